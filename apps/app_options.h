@@ -1,0 +1,153 @@
+#pragma once
+// The command line every app shares:
+//   --width N  --spp N  --depth N  --threads N  --seed N  -o FILE  --quiet  --help
+// and the way every app ends: the image to FILE (format by extension) or a P3 PPM on stdout,
+// and one "app: error: ..." line with exit status 1 for bad input, 2 for bad usage.
+
+#include <rtweekend/camera.h>
+#include <rtweekend/image.h>
+#include <rtweekend/scene_error.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace app {
+
+struct options {
+    std::optional<int> width, spp, depth, threads;
+    std::optional<uint64_t> seed;
+    std::string output; // empty: PPM on stdout
+    bool quiet = false;
+    std::vector<std::string> positional;
+
+    // Applies the flags that were given on top of the app's own camera settings.
+    void apply(rt::camera& cam) const {
+        if (width) {
+            cam.image_width = *width;
+            cam.image_height = 0; // keep the aspect ratio
+        }
+        if (spp) cam.samples_per_pixel = *spp;
+        if (depth) cam.max_depth = *depth;
+        if (threads) cam.threads = *threads;
+        if (seed) cam.seed = *seed;
+        cam.quiet = quiet;
+    }
+};
+
+struct description {
+    const char* name;     // program name, for messages
+    const char* summary;  // one line: what the app shows
+    const char* operands; // positional arguments in the usage line, or ""
+    size_t min_positional = 0, max_positional = 0;
+};
+
+inline void print_usage(const description& d, std::FILE* to) {
+    std::fprintf(to,
+                 "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [-o FILE] [--quiet]\n"
+                 "%s\n"
+                 "  --width N    image width in pixels (height follows the aspect ratio)\n"
+                 "  --spp N      samples per pixel\n"
+                 "  --depth N    maximum bounces per path\n"
+                 "  --threads N  worker threads (0 = all cores)\n"
+                 "  --seed N     random seed (same seed, same image)\n"
+                 "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
+                 "  --quiet      no progress or statistics on stderr\n"
+                 "  --help       show this help\n",
+                 d.name, d.operands[0] ? " " : "", d.operands, d.summary);
+}
+
+[[noreturn]] inline void usage_error(const description& d, const std::string& message) {
+    std::fprintf(stderr, "%s: error: %s\n", d.name, message.c_str());
+    print_usage(d, stderr);
+    std::exit(2);
+}
+
+inline long long parse_integer(const description& d, const std::string& flag, const std::string& text, long long min,
+                               long long max) {
+    errno = 0;
+    char* end = nullptr;
+    long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE)
+        usage_error(d, flag + " needs an integer, got '" + text + "'");
+    if (v < min || v > max)
+        usage_error(d, flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
+    return v;
+}
+
+inline options parse(int argc, char** argv, const description& d) {
+    options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i], value;
+        bool has_inline_value = false;
+        if (arg.rfind("--", 0) == 0) {
+            auto eq = arg.find('=');
+            if (eq != std::string::npos) {
+                value = arg.substr(eq + 1);
+                arg = arg.substr(0, eq);
+                has_inline_value = true;
+            }
+        }
+        auto next = [&]() -> std::string {
+            if (has_inline_value) return value;
+            if (i + 1 >= argc) usage_error(d, arg + " needs a value");
+            return argv[++i];
+        };
+        constexpr long long max_size = 1 << 16;
+        if (arg == "--help" || arg == "-h") {
+            print_usage(d, stdout);
+            std::exit(0);
+        } else if (arg == "--width") o.width = int(parse_integer(d, arg, next(), 1, max_size));
+        else if (arg == "--spp") o.spp = int(parse_integer(d, arg, next(), 1, 1 << 24));
+        else if (arg == "--depth") o.depth = int(parse_integer(d, arg, next(), 1, 1 << 16));
+        else if (arg == "--threads") o.threads = int(parse_integer(d, arg, next(), 0, 1024));
+        else if (arg == "--seed") o.seed = uint64_t(parse_integer(d, arg, next(), 0, INT64_MAX));
+        else if (arg == "-o" || arg == "--output") {
+            o.output = next();
+            if (o.output.empty()) usage_error(d, "-o needs a file name");
+        } else if (arg == "--quiet" || arg == "-q") {
+            if (has_inline_value) usage_error(d, "--quiet takes no value");
+            o.quiet = true;
+        } else if (arg.size() > 1 && arg[0] == '-') usage_error(d, "unknown option '" + arg + "'");
+        else o.positional.push_back(arg);
+    }
+    if (o.positional.size() < d.min_positional || o.positional.size() > d.max_positional)
+        usage_error(d, d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
+                                             : std::string("expected ") + d.operands);
+    return o;
+}
+
+// Writes the image where the options say: -o FILE, or a P3 PPM on stdout.
+inline void write_output(const options& o, const rt::image& img) {
+    if (o.output.empty()) {
+        rt::write_ppm(std::cout, img);
+        std::cout.flush();
+        if (!std::cout) throw rt::scene_error("cannot write the image to standard output");
+    } else {
+        rt::write_image(o.output, img);
+    }
+}
+
+// Runs an app's body, turning scene_error (and any other failure) into one error line.
+template <class Body>
+int run(const description& d, Body&& body) {
+    try {
+        body();
+        return 0;
+    } catch (const rt::scene_error& e) {
+        std::fprintf(stderr, "%s: error: %s\n", d.name, e.what());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "%s: error: out of memory\n", d.name);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: %s\n", d.name, e.what());
+    }
+    return 1;
+}
+
+} // namespace app

@@ -1,0 +1,195 @@
+#pragma once
+// image: a float framebuffer of linear radiance, and the writers that turn it into files.
+//
+//   write_image(path, img)     format by extension: .ppm (P3, the book's exact layout), .png and
+//                              .bmp (8-bit, via stb_image_write), .pfm (linear float). Writes a
+//                              temporary file beside the target and renames it, so a reader
+//                              never sees half an image. Throws scene_error naming the path.
+//   write_ppm(out, img)        P3 to a stream, byte for byte what the book's code prints.
+//
+// Gamma (the book's square root) and 8-bit quantisation happen only here, at write time.
+
+#include "color.h"
+#include "scene_error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#endif
+#ifndef STB_IMAGE_WRITE_IMPLEMENTATION
+// Private, static copies of stb's functions, so that any number of translation units can
+// include this header.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#endif
+#if __has_include(<stb_image_write.h>)
+#include <stb_image_write.h>
+#else
+#include <stb/stb_image_write.h>
+#endif
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+namespace rt {
+
+class image {
+  public:
+    image() = default;
+    image(int width, int height) : width_(width), height_(height), rgb_(size_t(width) * size_t(height) * 3, 0.0f) {}
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    bool empty() const { return width_ <= 0 || height_ <= 0; }
+
+    // Linear radiance of pixel (x, y); row 0 is the top of the picture.
+    color pixel(int x, int y) const {
+        const float* p = &rgb_[index(x, y)];
+        return color(p[0], p[1], p[2]);
+    }
+    void set_pixel(int x, int y, const color& c) {
+        float* p = &rgb_[index(x, y)];
+        p[0] = static_cast<float>(c.x());
+        p[1] = static_cast<float>(c.y());
+        p[2] = static_cast<float>(c.z());
+    }
+
+    // Interleaved RGB floats, rows top to bottom.
+    const std::vector<float>& data() const { return rgb_; }
+    std::vector<float>& data() { return rgb_; }
+
+  private:
+    size_t index(int x, int y) const { return (size_t(y) * size_t(width_) + size_t(x)) * 3; }
+
+    int width_ = 0, height_ = 0;
+    std::vector<float> rgb_;
+};
+
+// The image encoded the book's way: gamma 2, int(256 * clamp(x, 0, 0.999)), RGB bytes.
+inline std::vector<unsigned char> encode_8bit(const image& img) {
+    std::vector<unsigned char> bytes(img.data().size());
+    std::transform(img.data().begin(), img.data().end(), bytes.begin(),
+                   [](float v) { return static_cast<unsigned char>(encode_byte(v)); });
+    return bytes;
+}
+
+// P3 PPM: "P3\n<w> <h>\n255\n" then one "r g b" line per pixel, rows top to bottom.
+inline void write_ppm(std::ostream& out, const image& img) {
+    out << "P3\n" << img.width() << ' ' << img.height() << "\n255\n";
+    std::vector<unsigned char> bytes = encode_8bit(img);
+    std::string text;
+    text.reserve(bytes.size() * 4);
+    char line[16];
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        int n = std::snprintf(line, sizeof line, "%d %d %d\n", bytes[i], bytes[i + 1], bytes[i + 2]);
+        text.append(line, size_t(n));
+    }
+    out << text;
+}
+
+namespace detail {
+
+inline std::string lowercase_extension(const std::string& path) {
+    auto slash = path.find_last_of("/\\");
+    auto dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot);
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext;
+}
+
+inline void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::string*>(context);
+    out->append(static_cast<const char*>(data), size_t(size));
+}
+
+// PFM: "PF\n<w> <h>\n-1.0\n" (negative scale = little-endian), float RGB rows bottom to top.
+inline std::string encode_pfm(const image& img) {
+    std::string out = "PF\n" + std::to_string(img.width()) + " " + std::to_string(img.height()) + "\n-1.0\n";
+    size_t row_floats = size_t(img.width()) * 3;
+    for (int y = img.height() - 1; y >= 0; --y) {
+        const float* row = img.data().data() + size_t(y) * row_floats;
+        for (size_t i = 0; i < row_floats; ++i) {
+            uint32_t bits;
+            std::memcpy(&bits, &row[i], 4);
+            char le[4] = {char(bits & 0xff), char((bits >> 8) & 0xff), char((bits >> 16) & 0xff), char(bits >> 24)};
+            out.append(le, 4);
+        }
+    }
+    return out;
+}
+
+// Writes `contents` to `path` through a temporary file in the same directory and a rename.
+inline void write_file_atomically(const std::string& path, const std::string& contents) {
+    std::ostringstream tmp_name;
+    tmp_name << path << ".tmp-" << std::hex
+             << (std::hash<std::thread::id>{}(std::this_thread::get_id()) ^
+                 uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::string tmp = tmp_name.str();
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw scene_error("cannot write '" + path + "': " + std::strerror(errno));
+    bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
+    int saved_errno = errno;
+    ok = (std::fclose(f) == 0) && ok;
+    if (!ok) {
+        std::remove(tmp.c_str());
+        throw scene_error("cannot write '" + path + "': " + std::strerror(saved_errno ? saved_errno : EIO));
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        saved_errno = errno;
+        std::remove(tmp.c_str());
+        throw scene_error("cannot write '" + path + "': " + std::strerror(saved_errno));
+    }
+}
+
+} // namespace detail
+
+// The file contents write_image would write for `path`'s extension.
+inline std::string encode_image(const std::string& path, const image& img) {
+    if (img.empty())
+        throw scene_error("cannot write '" + path + "': the image is empty (" + std::to_string(img.width()) + "x" +
+                          std::to_string(img.height()) + ")");
+    std::string ext = detail::lowercase_extension(path);
+    std::string out;
+    if (ext == ".ppm") {
+        std::ostringstream s;
+        write_ppm(s, img);
+        out = s.str();
+    } else if (ext == ".png" || ext == ".bmp") {
+        std::vector<unsigned char> bytes = encode_8bit(img);
+        int ok = ext == ".png"
+                     ? stbi_write_png_to_func(detail::append_bytes, &out, img.width(), img.height(), 3, bytes.data(),
+                                              img.width() * 3)
+                     : stbi_write_bmp_to_func(detail::append_bytes, &out, img.width(), img.height(), 3, bytes.data());
+        if (!ok) throw scene_error("cannot encode '" + path + "'");
+    } else if (ext == ".pfm") {
+        out = detail::encode_pfm(img);
+    } else {
+        throw scene_error("cannot write '" + path + "': unknown image format '" + ext +
+                          "' (use .ppm, .png, .bmp or .pfm)");
+    }
+    return out;
+}
+
+inline void write_image(const std::string& path, const image& img) {
+    detail::write_file_atomically(path, encode_image(path, img));
+}
+
+} // namespace rt

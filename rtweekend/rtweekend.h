@@ -1,0 +1,35 @@
+#pragma once
+// rtweekend.h: the umbrella header. Includes the whole teaching surface and, like the book's
+// rtweekend.h, brings the names book-style code uses unqualified into the global namespace:
+// shared_ptr, make_shared, infinity, pi, degrees_to_radians, random_double, and every rt class
+// a book chapter introduces (unless RTWEEKEND_NO_GLOBAL_NAMES is defined).
+
+#include "camera.h"
+#include "color.h"
+#include "constants.h"
+#include "hittable.h"
+#include "hittable_list.h"
+#include "image.h"
+#include "interval.h"
+#include "material.h"
+#include "ray.h"
+#include "render.h"
+#include "rng.h"
+#include "sphere.h"
+#include "vec3.h"
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+
+#ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using std::make_shared;
+using std::shared_ptr;
+
+using rt::degrees_to_radians;
+using rt::infinity;
+using rt::pi;
+using rt::random_double;
+using rt::random_int;
+#endif

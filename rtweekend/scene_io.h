@@ -1,0 +1,189 @@
+#pragma once
+// Scene files: the plain-text format of the book-1 cover scene (see README, "Scene files").
+//
+//   scene_description s = load_scene("cover.txt");   // throws scene_error "file:line: problem"
+//   s.cam.render(s.world);
+//
+// One directive per line; '#' starts a comment; blank lines are ignored.
+//   camera <key> <values...>     keys: lookfrom x y z | lookat x y z | vup x y z | vfov_deg d |
+//                                defocus_angle_deg d | focus_dist d | aspect_ratio r |
+//                                image_width n | image_height n | samples_per_pixel n |
+//                                max_depth n | background r g b | seed n
+//   sphere cx cy cz radius <lambertian|metal|dielectric> r g b fuzz ior
+
+#include "camera.h"
+#include "hittable_list.h"
+#include "material.h"
+#include "scene_error.h"
+#include "sphere.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <istream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+struct scene_description {
+    camera cam;
+    hittable_list world;
+};
+
+// Reads a scene from a stream; `name` is the file name used in error messages.
+scene_description parse_scene(std::istream& in, const std::string& name);
+
+// Reads a scene file.
+scene_description load_scene(const std::string& path);
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+class scene_line {
+  public:
+    scene_line(const std::string& file, int number, std::vector<std::string> tokens)
+        : where_(file + ":" + std::to_string(number) + ": "), tokens_(std::move(tokens)) {}
+
+    [[noreturn]] void fail(const std::string& message) const { throw scene_error(where_ + message); }
+
+    size_t size() const { return tokens_.size(); }
+    const std::string& word(size_t i) const { return tokens_.at(i); }
+
+    void expect_count(size_t n, const std::string& form) const {
+        if (tokens_.size() != n)
+            fail("expected '" + form + "' (" + std::to_string(n) + " fields), got " + std::to_string(tokens_.size()));
+    }
+
+    double number(size_t i, const char* what) const {
+        const std::string& s = tokens_.at(i);
+        errno = 0;
+        char* end = nullptr;
+        double v = std::strtod(s.c_str(), &end);
+        if (end == s.c_str() || *end != '\0') fail(std::string(what) + ": '" + s + "' is not a number");
+        if (!std::isfinite(v) || errno == ERANGE) fail(std::string(what) + ": '" + s + "' is not a finite number");
+        return v;
+    }
+
+    int integer(size_t i, const char* what, long min) const {
+        const std::string& s = tokens_.at(i);
+        errno = 0;
+        char* end = nullptr;
+        long v = std::strtol(s.c_str(), &end, 10);
+        if (end == s.c_str() || *end != '\0') fail(std::string(what) + ": '" + s + "' is not an integer");
+        if (errno == ERANGE || v < min || v > 1 << 30)
+            fail(std::string(what) + ": " + s + " is out of range (at least " + std::to_string(min) + ")");
+        return static_cast<int>(v);
+    }
+
+    vec3 vector(size_t i, const char* what) const {
+        return vec3(number(i, what), number(i + 1, what), number(i + 2, what));
+    }
+
+  private:
+    std::string where_;
+    std::vector<std::string> tokens_;
+};
+
+inline void parse_camera_line(const scene_line& line, camera& cam) {
+    if (line.size() < 2) line.fail("'camera' needs a key and values");
+    const std::string& key = line.word(1);
+    auto one = [&](const char* what) {
+        line.expect_count(3, "camera " + key + " <value>");
+        return line.number(2, what);
+    };
+    auto three = [&](const char* what) {
+        line.expect_count(5, "camera " + key + " x y z");
+        return line.vector(2, what);
+    };
+    if (key == "lookfrom") cam.lookfrom = three("lookfrom");
+    else if (key == "lookat") cam.lookat = three("lookat");
+    else if (key == "vup") cam.vup = three("vup");
+    else if (key == "vfov_deg" || key == "vfov") cam.vfov = one("vfov");
+    else if (key == "defocus_angle_deg" || key == "defocus_angle") cam.defocus_angle = one("defocus_angle");
+    else if (key == "focus_dist") cam.focus_dist = one("focus_dist");
+    else if (key == "aspect_ratio") cam.aspect_ratio = one("aspect_ratio");
+    else if (key == "background") {
+        color bg = three("background");
+        if (bg.x() < 0 || bg.y() < 0 || bg.z() < 0) line.fail("background must be non-negative");
+        cam.background = bg;
+    } else {
+        line.expect_count(3, "camera " + key + " <integer>");
+        if (key == "image_width") cam.image_width = line.integer(2, "image_width", 1);
+        else if (key == "image_height") cam.image_height = line.integer(2, "image_height", 1);
+        else if (key == "samples_per_pixel") cam.samples_per_pixel = line.integer(2, "samples_per_pixel", 1);
+        else if (key == "max_depth") cam.max_depth = line.integer(2, "max_depth", 1);
+        else if (key == "seed") cam.seed = static_cast<uint64_t>(line.integer(2, "seed", 0));
+        else line.fail("unknown camera key '" + key + "'");
+    }
+    if (key == "vfov_deg" || key == "vfov") {
+        if (!(cam.vfov > 0 && cam.vfov < 180)) line.fail("vfov must be between 0 and 180 degrees");
+    } else if (key == "defocus_angle_deg" || key == "defocus_angle") {
+        if (!(cam.defocus_angle >= 0 && cam.defocus_angle < 180)) line.fail("defocus_angle must be in [0, 180)");
+    } else if (key == "focus_dist" && !(cam.focus_dist > 0)) {
+        line.fail("focus_dist must be positive");
+    } else if (key == "aspect_ratio" && !(cam.aspect_ratio > 0)) {
+        line.fail("aspect_ratio must be positive");
+    }
+}
+
+inline std::shared_ptr<hittable> parse_sphere_line(const scene_line& line) {
+    line.expect_count(11, "sphere cx cy cz radius material r g b fuzz ior");
+    point3 center = line.vector(1, "sphere centre");
+    double radius = line.number(4, "sphere radius");
+    if (!(radius > 0)) line.fail("sphere radius must be positive, got " + line.word(4));
+    const std::string& kind = line.word(5);
+    color albedo = line.vector(6, "albedo");
+    if (albedo.x() < 0 || albedo.y() < 0 || albedo.z() < 0) line.fail("albedo must be non-negative");
+    double fuzz = line.number(9, "fuzz");
+    double ior = line.number(10, "ior");
+    std::shared_ptr<material> mat;
+    if (kind == "lambertian") {
+        mat = std::make_shared<lambertian>(albedo);
+    } else if (kind == "metal") {
+        if (fuzz < 0) line.fail("metal fuzz must be non-negative, got " + line.word(9));
+        mat = std::make_shared<metal>(albedo, fuzz);
+    } else if (kind == "dielectric") {
+        if (!(ior > 0)) line.fail("dielectric ior must be positive, got " + line.word(10));
+        mat = std::make_shared<dielectric>(ior);
+    } else {
+        line.fail("unknown material '" + kind + "' (expected lambertian, metal or dielectric)");
+    }
+    return std::make_shared<sphere>(center, radius, mat);
+}
+
+} // namespace detail
+
+inline scene_description parse_scene(std::istream& in, const std::string& name) {
+    scene_description scene;
+    std::string text;
+    int number = 0;
+    while (std::getline(in, text)) {
+        ++number;
+        auto hash = text.find('#');
+        if (hash != std::string::npos) text.erase(hash);
+        std::istringstream words(text);
+        std::vector<std::string> tokens;
+        for (std::string w; words >> w;) tokens.push_back(w);
+        if (tokens.empty()) continue;
+        detail::scene_line line(name, number, std::move(tokens));
+        if (line.word(0) == "camera") detail::parse_camera_line(line, scene.cam);
+        else if (line.word(0) == "sphere") scene.world.add(detail::parse_sphere_line(line));
+        else line.fail("unknown directive '" + line.word(0) + "' (expected camera or sphere)");
+    }
+    if (in.bad()) throw scene_error(name + ": read error");
+    return scene;
+}
+
+inline scene_description load_scene(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw scene_error(path + ": cannot open scene file: " + std::strerror(errno));
+    return parse_scene(in, path);
+}
+
+} // namespace rt

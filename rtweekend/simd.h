@@ -1,0 +1,137 @@
+#pragma once
+// floatv: a few floats processed by one instruction, for the renderer's inner loops. It maps to
+// AVX-512 (16 lanes), AVX (8) or SSE2 (4) when the compiler targets them (-march=native picks the
+// widest the machine has) and to plain scalar code elsewhere, with the same source.
+//
+//   floatv a = floatv::load(ptr), b(2.0f);    a + b, a * b, a / b, sqrt(a), min(a, b)
+//   maskv m = a < b;                          select(m, a, b), any(m), m & n
+//
+// Lane counts are a compile-time property: floatv::width.
+
+#include <cmath>
+#include <cstddef>
+
+#if defined(__AVX512F__) || defined(__AVX__)
+#include <immintrin.h>
+#elif defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#define RTWEEKEND_SSE2 1
+#endif
+
+namespace rt {
+
+#if defined(__AVX512F__)
+
+struct maskv {
+    __mmask16 m;
+};
+struct floatv {
+    static constexpr size_t width = 16;
+    __m512 v;
+    floatv() = default;
+    floatv(__m512 x) : v(x) {}
+    floatv(float x) : v(_mm512_set1_ps(x)) {}
+    static floatv load(const float* p) { return _mm512_loadu_ps(p); }
+    void store(float* p) const { _mm512_storeu_ps(p, v); }
+};
+inline floatv operator+(floatv a, floatv b) { return _mm512_add_ps(a.v, b.v); }
+inline floatv operator-(floatv a, floatv b) { return _mm512_sub_ps(a.v, b.v); }
+inline floatv operator*(floatv a, floatv b) { return _mm512_mul_ps(a.v, b.v); }
+inline floatv operator/(floatv a, floatv b) { return _mm512_div_ps(a.v, b.v); }
+// The maskz forms avoid GCC 12's false -Wmaybe-uninitialized on _mm512_undefined_ps.
+inline floatv sqrt(floatv a) { return _mm512_maskz_sqrt_ps(0xFFFF, a.v); }
+inline floatv min(floatv a, floatv b) { return _mm512_maskz_min_ps(0xFFFF, a.v, b.v); }
+inline floatv max(floatv a, floatv b) { return _mm512_maskz_max_ps(0xFFFF, a.v, b.v); }
+inline maskv operator<(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LT_OQ)}; }
+inline maskv operator>(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GT_OQ)}; }
+inline maskv operator>=(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
+inline maskv operator&(maskv a, maskv b) { return {static_cast<__mmask16>(a.m & b.m)}; }
+inline floatv select(maskv m, floatv a, floatv b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
+inline bool any(maskv m) { return m.m != 0; }
+
+#elif defined(__AVX__)
+
+struct maskv {
+    __m256 m;
+};
+struct floatv {
+    static constexpr size_t width = 8;
+    __m256 v;
+    floatv() = default;
+    floatv(__m256 x) : v(x) {}
+    floatv(float x) : v(_mm256_set1_ps(x)) {}
+    static floatv load(const float* p) { return _mm256_loadu_ps(p); }
+    void store(float* p) const { _mm256_storeu_ps(p, v); }
+};
+inline floatv operator+(floatv a, floatv b) { return _mm256_add_ps(a.v, b.v); }
+inline floatv operator-(floatv a, floatv b) { return _mm256_sub_ps(a.v, b.v); }
+inline floatv operator*(floatv a, floatv b) { return _mm256_mul_ps(a.v, b.v); }
+inline floatv operator/(floatv a, floatv b) { return _mm256_div_ps(a.v, b.v); }
+inline floatv sqrt(floatv a) { return _mm256_sqrt_ps(a.v); }
+inline floatv min(floatv a, floatv b) { return _mm256_min_ps(a.v, b.v); }
+inline floatv max(floatv a, floatv b) { return _mm256_max_ps(a.v, b.v); }
+inline maskv operator<(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
+inline maskv operator>(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
+inline maskv operator>=(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
+inline maskv operator&(maskv a, maskv b) { return {_mm256_and_ps(a.m, b.m)}; }
+inline floatv select(maskv m, floatv a, floatv b) { return _mm256_blendv_ps(b.v, a.v, m.m); }
+inline bool any(maskv m) { return _mm256_movemask_ps(m.m) != 0; }
+
+#elif defined(RTWEEKEND_SSE2)
+
+struct maskv {
+    __m128 m;
+};
+struct floatv {
+    static constexpr size_t width = 4;
+    __m128 v;
+    floatv() = default;
+    floatv(__m128 x) : v(x) {}
+    floatv(float x) : v(_mm_set1_ps(x)) {}
+    static floatv load(const float* p) { return _mm_loadu_ps(p); }
+    void store(float* p) const { _mm_storeu_ps(p, v); }
+};
+inline floatv operator+(floatv a, floatv b) { return _mm_add_ps(a.v, b.v); }
+inline floatv operator-(floatv a, floatv b) { return _mm_sub_ps(a.v, b.v); }
+inline floatv operator*(floatv a, floatv b) { return _mm_mul_ps(a.v, b.v); }
+inline floatv operator/(floatv a, floatv b) { return _mm_div_ps(a.v, b.v); }
+inline floatv sqrt(floatv a) { return _mm_sqrt_ps(a.v); }
+inline floatv min(floatv a, floatv b) { return _mm_min_ps(a.v, b.v); }
+inline floatv max(floatv a, floatv b) { return _mm_max_ps(a.v, b.v); }
+inline maskv operator<(floatv a, floatv b) { return {_mm_cmplt_ps(a.v, b.v)}; }
+inline maskv operator>(floatv a, floatv b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+inline maskv operator>=(floatv a, floatv b) { return {_mm_cmpge_ps(a.v, b.v)}; }
+inline maskv operator&(maskv a, maskv b) { return {_mm_and_ps(a.m, b.m)}; }
+inline floatv select(maskv m, floatv a, floatv b) { return _mm_or_ps(_mm_and_ps(m.m, a.v), _mm_andnot_ps(m.m, b.v)); }
+inline bool any(maskv m) { return _mm_movemask_ps(m.m) != 0; }
+
+#else
+
+struct maskv {
+    bool m;
+};
+struct floatv {
+    static constexpr size_t width = 1;
+    float v;
+    floatv() = default;
+    floatv(float x) : v(x) {}
+    static floatv load(const float* p) { return *p; }
+    void store(float* p) const { *p = v; }
+};
+inline floatv operator+(floatv a, floatv b) { return a.v + b.v; }
+inline floatv operator-(floatv a, floatv b) { return a.v - b.v; }
+inline floatv operator*(floatv a, floatv b) { return a.v * b.v; }
+inline floatv operator/(floatv a, floatv b) { return a.v / b.v; }
+inline floatv sqrt(floatv a) { return std::sqrt(a.v); }
+inline floatv min(floatv a, floatv b) { return a.v < b.v ? a.v : b.v; }
+inline floatv max(floatv a, floatv b) { return a.v > b.v ? a.v : b.v; }
+inline maskv operator<(floatv a, floatv b) { return {a.v < b.v}; }
+inline maskv operator>(floatv a, floatv b) { return {a.v > b.v}; }
+inline maskv operator>=(floatv a, floatv b) { return {a.v >= b.v}; }
+inline maskv operator&(maskv a, maskv b) { return {a.m && b.m}; }
+inline floatv select(maskv m, floatv a, floatv b) { return m.m ? a : b; }
+inline bool any(maskv m) { return m.m; }
+
+#endif
+
+} // namespace rt

@@ -1,0 +1,55 @@
+#pragma once
+// vec3f: the renderer's single-precision vector. The teaching surface describes scenes with the
+// book's double vec3; the compiled scene (scene.h) and the render loop work in float.
+
+#include "vec3.h"
+
+#include <cmath>
+
+namespace rt {
+
+struct vec3f {
+    float x = 0, y = 0, z = 0;
+
+    constexpr vec3f() = default;
+    constexpr vec3f(float x, float y, float z) : x(x), y(y), z(z) {}
+    constexpr explicit vec3f(const vec3& v)
+        : x(static_cast<float>(v.x())), y(static_cast<float>(v.y())), z(static_cast<float>(v.z())) {}
+
+    constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    constexpr vec3f operator-() const { return {-x, -y, -z}; }
+    constexpr vec3f& operator+=(const vec3f& v) { x += v.x; y += v.y; z += v.z; return *this; }
+    constexpr vec3f& operator*=(const vec3f& v) { x *= v.x; y *= v.y; z *= v.z; return *this; }
+    constexpr vec3f& operator*=(float t) { x *= t; y *= t; z *= t; return *this; }
+
+    vec3 to_double() const { return vec3(x, y, z); }
+};
+
+constexpr vec3f operator+(const vec3f& a, const vec3f& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+constexpr vec3f operator-(const vec3f& a, const vec3f& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+constexpr vec3f operator*(const vec3f& a, const vec3f& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+constexpr vec3f operator*(float t, const vec3f& v) { return {t * v.x, t * v.y, t * v.z}; }
+constexpr vec3f operator*(const vec3f& v, float t) { return t * v; }
+constexpr vec3f operator/(const vec3f& v, float t) { return (1.0f / t) * v; }
+
+constexpr float dot(const vec3f& a, const vec3f& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr vec3f cross(const vec3f& a, const vec3f& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+constexpr float length_squared(const vec3f& v) { return dot(v, v); }
+inline float length(const vec3f& v) { return std::sqrt(dot(v, v)); }
+inline vec3f normalize(const vec3f& v) { return v * (1.0f / length(v)); }
+inline float max_abs_component(const vec3f& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
+inline bool is_finite(const vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// The renderer's ray: origin, unit direction, and the open parameter range (tmin, tmax).
+struct ray3f {
+    vec3f origin;
+    vec3f dir;
+    float tmin = 0;
+    float tmax = std::numeric_limits<float>::infinity();
+
+    vec3f at(float t) const { return origin + t * dir; }
+};
+
+} // namespace rt
