@@ -28,6 +28,11 @@
 #include <thread>
 #include <vector>
 
+#if __has_include(<unistd.h>)
+#include <unistd.h>
+#define RTWEEKEND_HAS_UNISTD 1
+#endif
+
 namespace rt {
 
 struct render_stats {
@@ -139,6 +144,14 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
     return {0, 0, 0}; // the book: no more light is gathered past the bounce limit
 }
 
+inline bool stderr_is_terminal() {
+#if RTWEEKEND_HAS_UNISTD
+    return isatty(2) != 0;
+#else
+    return false;
+#endif
+}
+
 // Runs `sample(x, y, s, rng, rays)` -> vec3f for every sample of every pixel, in tiles on
 // worker threads, and averages the samples into an image.
 template <class SampleFn>
@@ -153,11 +166,14 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
     render_result result;
     result.img = image(w, h);
     std::vector<float>& pixels = result.img.data();
-    std::atomic<int> next_tile{0}, tiles_done{0}, percent_shown{-1};
+    std::atomic<int> next_tile{0}, tiles_done{0}, percent_shown{0};
     std::atomic<uint64_t> total_rays{0}, total_nonfinite{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     std::atomic<bool> failed{false};
+
+    const bool interactive = stderr_is_terminal();
+    if (!cam.quiet && !interactive) std::fprintf(stderr, "rtweekend: rendering");
 
     auto worker = [&] {
         uint64_t rays = 0, nonfinite = 0;
@@ -186,10 +202,15 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
                 }
                 int done = ++tiles_done;
                 if (!cam.quiet) {
-                    int pct = int(int64_t(done) * 100 / tile_count);
+                    // A terminal gets a counter updated in place; a log gets every tenth percent.
+                    int step = interactive ? 1 : 10;
+                    int pct = int(int64_t(done) * 100 / tile_count) / step * step;
                     int shown = percent_shown.load();
                     while (pct > shown && !percent_shown.compare_exchange_weak(shown, pct)) {}
-                    if (pct > shown) std::fprintf(stderr, "\rrtweekend: rendering %3d%%", pct);
+                    if (pct > shown) {
+                        if (interactive) std::fprintf(stderr, "\rrtweekend: rendering %3d%%", pct);
+                        else std::fprintf(stderr, " %d%%", pct);
+                    }
                 }
             }
         } catch (...) {
