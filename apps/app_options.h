@@ -120,6 +120,15 @@ inline options parse(int argc, char** argv, const description& d) {
     if (o.positional.size() < d.min_positional || o.positional.size() > d.max_positional)
         usage_error(d, d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
                                              : std::string("expected ") + d.operands);
+    if (!o.output.empty()) {
+        // Refuse a bad output path before rendering, not after.
+        try {
+            rt::check_output_path(o.output);
+        } catch (const rt::scene_error& e) {
+            std::fprintf(stderr, "%s: error: %s\n", d.name, e.what());
+            std::exit(1);
+        }
+    }
     return o;
 }
 

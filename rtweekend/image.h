@@ -5,6 +5,7 @@
 //                              .bmp (8-bit, via stb_image_write), .pfm (linear float). Writes a
 //                              temporary file beside the target and renames it, so a reader
 //                              never sees half an image. Throws scene_error naming the path.
+//   check_output_path(path)    throws now if write_image(path, ...) could not succeed later.
 //   write_ppm(out, img)        P3 to a stream, byte for byte what the book's code prints.
 //
 // Gamma (the book's square root) and 8-bit quantisation happen only here, at write time.
@@ -19,6 +20,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <ostream>
 #include <sstream>
@@ -136,13 +138,26 @@ inline std::string encode_pfm(const image& img) {
     return out;
 }
 
+inline std::string temporary_name(const std::string& path) {
+    std::ostringstream name;
+    name << path << ".tmp-" << std::hex
+         << (std::hash<std::thread::id>{}(std::this_thread::get_id()) ^
+             uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
+    return name.str();
+}
+
+// The extension of `path` if write_image knows it; throws scene_error otherwise.
+inline std::string image_format(const std::string& path) {
+    std::string ext = lowercase_extension(path);
+    if (ext != ".ppm" && ext != ".png" && ext != ".bmp" && ext != ".pfm")
+        throw scene_error("cannot write '" + path + "': unknown image format '" + ext +
+                          "' (use .ppm, .png, .bmp or .pfm)");
+    return ext;
+}
+
 // Writes `contents` to `path` through a temporary file in the same directory and a rename.
 inline void write_file_atomically(const std::string& path, const std::string& contents) {
-    std::ostringstream tmp_name;
-    tmp_name << path << ".tmp-" << std::hex
-             << (std::hash<std::thread::id>{}(std::this_thread::get_id()) ^
-                 uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
-    std::string tmp = tmp_name.str();
+    std::string tmp = temporary_name(path);
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw scene_error("cannot write '" + path + "': " + std::strerror(errno));
     bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
@@ -166,7 +181,7 @@ inline std::string encode_image(const std::string& path, const image& img) {
     if (img.empty())
         throw scene_error("cannot write '" + path + "': the image is empty (" + std::to_string(img.width()) + "x" +
                           std::to_string(img.height()) + ")");
-    std::string ext = detail::lowercase_extension(path);
+    std::string ext = detail::image_format(path);
     std::string out;
     if (ext == ".ppm") {
         std::ostringstream s;
@@ -179,17 +194,28 @@ inline std::string encode_image(const std::string& path, const image& img) {
                                               img.width() * 3)
                      : stbi_write_bmp_to_func(detail::append_bytes, &out, img.width(), img.height(), 3, bytes.data());
         if (!ok) throw scene_error("cannot encode '" + path + "'");
-    } else if (ext == ".pfm") {
-        out = detail::encode_pfm(img);
     } else {
-        throw scene_error("cannot write '" + path + "': unknown image format '" + ext +
-                          "' (use .ppm, .png, .bmp or .pfm)");
+        out = detail::encode_pfm(img);
     }
     return out;
 }
 
 inline void write_image(const std::string& path, const image& img) {
     detail::write_file_atomically(path, encode_image(path, img));
+}
+
+// Throws scene_error now if write_image(path, ...) would fail for want of a known format or a
+// writable directory, so a program can refuse before a long render rather than after it. It
+// creates and removes a temporary file beside `path`; `path` itself is not touched.
+inline void check_output_path(const std::string& path) {
+    detail::image_format(path);
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw scene_error("cannot write '" + path + "': it is a directory");
+    std::string probe = detail::temporary_name(path);
+    std::FILE* f = std::fopen(probe.c_str(), "wb");
+    if (!f) throw scene_error("cannot write '" + path + "': " + std::strerror(errno));
+    std::fclose(f);
+    std::remove(probe.c_str());
 }
 
 } // namespace rt

@@ -59,7 +59,8 @@ class lambertian : public material {
 
 class metal : public material {
   public:
-    metal(const color& albedo, double fuzz) : albedo_(albedo), fuzz_(fuzz < 1 ? fuzz : 1) {}
+    // Fuzz above 1 is clamped to 1, as in the book; NaN is kept so the renderer can reject it.
+    metal(const color& albedo, double fuzz) : albedo_(albedo), fuzz_(fuzz > 1 ? 1 : fuzz) {}
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         vec3 reflected = reflect(r_in.direction(), rec.normal);

@@ -11,6 +11,7 @@
 //                      current sample's generator, so user-written materials and shapes that call
 //                      it stay deterministic at any thread count.
 
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 
@@ -96,6 +97,6 @@ inline double random_double() {
 inline double random_double(double min, double max) { return min + (max - min) * random_double(); }
 
 // Returns a random integer in [min,max].
-inline int random_int(int min, int max) { return static_cast<int>(random_double(min, max + 1)); }
+inline int random_int(int min, int max) { return static_cast<int>(std::floor(random_double(min, max + 1.0))); }
 
 } // namespace rt

@@ -1,0 +1,53 @@
+# check_pragma_once.cmake: every header in HEADER_DIR starts with "#pragma once", after any
+# leading comments and blank lines.
+#
+#   cmake -DHEADER_DIR=<dir> -P check_pragma_once.cmake
+
+cmake_minimum_required(VERSION 3.16)
+
+if(NOT IS_DIRECTORY "${HEADER_DIR}")
+  message(FATAL_ERROR "check_pragma_once.cmake: HEADER_DIR '${HEADER_DIR}' is not a directory")
+endif()
+file(GLOB headers "${HEADER_DIR}/*.h")
+if(NOT headers)
+  message(FATAL_ERROR "check_pragma_once.cmake: no headers in '${HEADER_DIR}'")
+endif()
+
+set(bad "")
+foreach(header IN LISTS headers)
+  file(READ "${header}" text)
+  # Strip what may come before the directive: blank space, // comments and /* */ comments.
+  while(TRUE)
+    string(REGEX REPLACE "^[ \t\r\n]+" "" text "${text}")
+    if(text MATCHES "^//")
+      string(FIND "${text}" "\n" eol)
+      if(eol EQUAL -1)
+        set(text "")
+      else()
+        math(EXPR eol "${eol} + 1")
+        string(SUBSTRING "${text}" ${eol} -1 text)
+      endif()
+    elseif(text MATCHES "^/\\*")
+      string(FIND "${text}" "*/" close)
+      if(close EQUAL -1)
+        set(text "")
+      else()
+        math(EXPR close "${close} + 2")
+        string(SUBSTRING "${text}" ${close} -1 text)
+      endif()
+    else()
+      break()
+    endif()
+  endwhile()
+  if(NOT text MATCHES "^#[ \t]*pragma[ \t]+once[ \t]*(\r?\n|//|$)")
+    get_filename_component(name "${header}" NAME)
+    list(APPEND bad "${name}")
+  endif()
+endforeach()
+
+list(LENGTH headers count)
+if(bad)
+  string(REPLACE ";" ", " bad "${bad}")
+  message(FATAL_ERROR "headers that do not start with '#pragma once' (after comments): ${bad}")
+endif()
+message(STATUS "${count} headers in ${HEADER_DIR} start with #pragma once")
