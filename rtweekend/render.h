@@ -120,11 +120,14 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
         ++rays;
         if (!scene.intersect(r, hit)) return throughput * env.eval(r.dir);
 
-        const material_desc* m = &scene.materials[hit.material];
+        // A user-written hittable reports its own material; a built-in sphere indexes the table.
         material_desc custom_desc;
+        const material_desc* m;
         if (hit.custom_object) {
             custom_desc = scene.describe_material(hit.custom_record.mat.get());
             m = &custom_desc;
+        } else {
+            m = &scene.materials[hit.material];
         }
 
         vec3f dir, attenuation;

@@ -1,0 +1,109 @@
+// Sampling warps (rtweekend/sampling.h): uniform sphere, uniform disk, cosine hemisphere.
+//
+// Moments are checked on a stratified grid of (u1, u2) (midpoints of an n x n grid), where the
+// sample mean approximates the integral deterministically with error O(1/n^2) for smooth
+// integrands, so tight tolerances are safe.
+
+#include <rtweekend/sampling.h>
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace rt;
+
+namespace {
+
+template <class F>
+void for_grid(int n, F f) {
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) f((i + 0.5f) / n, (j + 0.5f) / n);
+}
+
+} // namespace
+
+TEST_CASE("sample_unit_sphere: unit vectors, uniform moments") {
+    // Uniform on the sphere: E[x] = E[y] = E[z] = 0, E[x^2] = E[y^2] = E[z^2] = 1/3, E[xy] = 0.
+    const int n = 200;
+    double sx = 0, sy = 0, sz = 0, sxx = 0, syy = 0, szz = 0, sxy = 0;
+    long upper = 0;
+    for_grid(n, [&](float u1, float u2) {
+        vec3f v = sample_unit_sphere(u1, u2);
+        if (std::fabs(length(v) - 1) > 1e-6f) FAIL_CHECK("not unit");
+        sx += v.x;
+        sy += v.y;
+        sz += v.z;
+        sxx += v.x * v.x;
+        syy += v.y * v.y;
+        szz += v.z * v.z;
+        sxy += v.x * v.y;
+        if (v.z > 0.5f) ++upper;
+    });
+    const double N = double(n) * n;
+    CHECK(std::fabs(sx / N) < 1e-4);
+    CHECK(std::fabs(sy / N) < 1e-4);
+    CHECK(std::fabs(sz / N) < 1e-4);
+    CHECK(sxx / N == doctest::Approx(1.0 / 3).epsilon(1e-4));
+    CHECK(syy / N == doctest::Approx(1.0 / 3).epsilon(1e-4));
+    CHECK(szz / N == doctest::Approx(1.0 / 3).epsilon(1e-4));
+    CHECK(std::fabs(sxy / N) < 1e-4);
+    // The cap z > 1/2 has area fraction (1 - 1/2)/2 = 1/4 (Archimedes).
+    CHECK(upper / N == doctest::Approx(0.25).epsilon(1e-3));
+    // Poles: u1 = 0 -> z = 1.
+    vec3f top = sample_unit_sphere(0, 0.3f);
+    CHECK(top.z == 1.0f);
+    CHECK(std::fabs(top.x) < 1e-7f);
+}
+
+TEST_CASE("sample_unit_disk: inside the unit disk, uniform by area") {
+    // Uniform on the disk: E[r^2] = 1/2, P(r < 1/2) = 1/4, E[x] = E[y] = 0, E[x^2] = 1/4.
+    const int n = 200;
+    double sr2 = 0, sx = 0, sy = 0, sxx = 0;
+    long inner = 0;
+    for_grid(n, [&](float u1, float u2) {
+        vec3f p = sample_unit_disk(u1, u2);
+        if (p.z != 0) FAIL_CHECK("z != 0");
+        float r2 = p.x * p.x + p.y * p.y;
+        if (!(r2 <= 1.0f)) FAIL_CHECK("outside the disk");
+        sr2 += r2;
+        sx += p.x;
+        sy += p.y;
+        sxx += p.x * p.x;
+        if (r2 < 0.25f) ++inner;
+    });
+    const double N = double(n) * n;
+    CHECK(sr2 / N == doctest::Approx(0.5).epsilon(1e-4));
+    CHECK(std::fabs(sx / N) < 1e-4);
+    CHECK(std::fabs(sy / N) < 1e-4);
+    CHECK(sxx / N == doctest::Approx(0.25).epsilon(1e-4));
+    CHECK(inner / N == doctest::Approx(0.25).epsilon(1e-3));
+}
+
+TEST_CASE("sample_cosine_direction: density cos(theta)/pi about the normal") {
+    // mu = cos(theta) has density 2 mu: E[mu] = 2/3, E[mu^2] = 1/2, P(mu < 1/2) = 1/4.
+    const vec3f n = normalize(vec3f(-2, 1, 0.5f));
+    const int n_grid = 300;
+    double smu = 0, smu2 = 0;
+    long low = 0;
+    for_grid(n_grid, [&](float u1, float u2) {
+        vec3f d = sample_cosine_direction(n, u1, u2);
+        if (std::fabs(length(d) - 1) > 1e-5f) FAIL_CHECK("not unit");
+        float mu = dot(d, n);
+        if (mu < -1e-6f) FAIL_CHECK("below the surface");
+        smu += mu;
+        smu2 += mu * mu;
+        if (mu < 0.5f) ++low;
+    });
+    const double N = double(n_grid) * n_grid;
+    CHECK(smu / N == doctest::Approx(2.0 / 3).epsilon(1e-3));
+    CHECK(smu2 / N == doctest::Approx(0.5).epsilon(1e-3));
+    CHECK(low / N == doctest::Approx(0.25).epsilon(2e-3));
+
+    // Degenerate draw: u1 = 1 gives the sphere point (0,0,-1) = -n for n = +z; n + that is zero,
+    // and the warp falls back to n itself.
+    vec3f up(0, 0, 1);
+    vec3f d = sample_cosine_direction(up, 1.0f, 0.0f);
+    CHECK(d.x == 0);
+    CHECK(d.y == 0);
+    CHECK(d.z == 1);
+}

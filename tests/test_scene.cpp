@@ -1,0 +1,191 @@
+// compile_scene (rtweekend/scene.h): what the renderer builds from the book's world, and the
+// invalid input it must reject with scene_error.
+
+#include <rtweekend/hittable_list.h>
+#include <rtweekend/material.h>
+#include <rtweekend/render.h>
+#include <rtweekend/scene.h>
+#include <rtweekend/sphere.h>
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+using namespace rt;
+
+namespace {
+
+const double nan_d = std::numeric_limits<double>::quiet_NaN();
+const double inf_d = std::numeric_limits<double>::infinity();
+
+std::shared_ptr<material> grey() { return std::make_shared<lambertian>(color(0.5, 0.5, 0.5)); }
+
+// A hittable that is not a built-in shape.
+class slab : public hittable {
+  public:
+    bool hit(const ray&, interval, hit_record&) const override { return false; }
+};
+
+class odd_material : public material {};
+
+// compile_scene(world, origin) must throw scene_error with a one-line message containing `fragment`.
+void check_rejected(const hittable& world, const std::string& fragment) {
+    CAPTURE(fragment);
+    bool threw = false;
+    try {
+        (void)compile_scene(world, point3(0, 0, 0));
+    } catch (const scene_error& e) {
+        threw = true;
+        std::string msg = e.what();
+        CAPTURE(msg);
+        CHECK(msg.find(fragment) != std::string::npos);
+        CHECK(msg.find('\n') == std::string::npos);
+    }
+    CHECK(threw);
+}
+
+hittable_list with(std::shared_ptr<hittable> h) {
+    hittable_list w;
+    w.add(std::move(h));
+    return w;
+}
+
+} // namespace
+
+TEST_CASE("compile_scene: positions are relative to the origin, computed in double") {
+    // Centre x = 1e8 + 0.5 with origin x = 1e8: the relative position 0.5 is exact in double, but
+    // float cannot even represent 1e8 + 0.5 (float spacing at 1e8 is 8), so rounding first would
+    // give 0 or 8.
+    hittable_list world;
+    world.add(std::make_shared<sphere>(point3(1e8 + 0.5, -3, 2.25), 0.75, grey()));
+    compiled_scene s = compile_scene(world, point3(1e8, 0, 0));
+    REQUIRE(s.sphere_count == 1);
+    CHECK(s.sphere_x[0] == 0.5f);
+    CHECK(s.sphere_y[0] == -3.0f);
+    CHECK(s.sphere_z[0] == 2.25f);
+    CHECK(s.sphere_r[0] == 0.75f);
+    CHECK(s.sphere_r2[0] == 0.5625f); // 0.75^2, exact
+    CHECK(s.origin.x() == 1e8);
+
+    // The hit is found where it should be: a ray from relative (0, -3, 2.25) along +x starts 0.5
+    // from the centre, inside the sphere, and meets the far wall at x = 0.5 + 0.75 = 1.25.
+    ray3f r;
+    r.dir = {1, 0, 0};
+    r.origin = {0, -3, 2.25};
+    surface_hit hit;
+    REQUIRE(s.intersect(r, hit));
+    CHECK(hit.t == doctest::Approx(1.25).epsilon(1e-6));
+    CHECK_FALSE(hit.front_face);
+}
+
+TEST_CASE("compile_scene: padding, nested lists, material table") {
+    auto shared = grey();
+    hittable_list inner;
+    inner.add(std::make_shared<sphere>(point3(0, 0, -5), 1, shared));
+    inner.add(std::make_shared<sphere>(point3(2, 0, -5), 1, shared));
+    hittable_list world;
+    world.add(std::make_shared<hittable_list>(inner));
+    world.add(std::make_shared<sphere>(point3(-2, 0, -5), 1, std::make_shared<metal>(color(0.1, 0.2, 0.3), 0.4)));
+    world.add(std::make_shared<sphere>(point3(-4, 0, -5), 1, std::make_shared<dielectric>(1.33)));
+    world.add(std::make_shared<sphere>(point3(4, 0, -5), 1, shared));
+    compiled_scene s = compile_scene(world, point3(0, 0, 0));
+
+    CHECK(s.sphere_count == 5);
+    // Arrays padded to whole blocks of 16, padding spheres unhittable (negative squared radius).
+    CHECK(s.sphere_x.size() == 16);
+    CHECK(s.sphere_r2.size() == 16);
+    for (size_t i = 5; i < 16; ++i) CHECK(s.sphere_r2[i] < 0);
+    CHECK(s.custom_objects.empty());
+    CHECK_FALSE(s.has_custom_materials);
+
+    // One table entry per distinct material, shared by pointer.
+    REQUIRE(s.materials.size() == 3);
+    CHECK(s.sphere_material[0] == s.sphere_material[1]);
+    CHECK(s.sphere_material[0] == s.sphere_material[4]);
+    const material_desc& lam = s.materials[s.sphere_material[0]];
+    CHECK(lam.kind == material_kind::lambertian);
+    CHECK(lam.albedo.x == 0.5f);
+    const material_desc& met = s.materials[s.sphere_material[2]];
+    CHECK(met.kind == material_kind::metal);
+    CHECK(met.fuzz == 0.4f);
+    CHECK(met.albedo.z == 0.3f);
+    const material_desc& gl = s.materials[s.sphere_material[3]];
+    CHECK(gl.kind == material_kind::dielectric);
+    CHECK(gl.refraction_index == 1.33f);
+
+    // 17 spheres need two blocks.
+    hittable_list many;
+    for (int i = 0; i < 17; ++i) many.add(std::make_shared<sphere>(point3(i, 0, -5), 0.1, shared));
+    compiled_scene m = compile_scene(many, point3(0, 0, 0));
+    CHECK(m.sphere_count == 17);
+    CHECK(m.sphere_x.size() == 32);
+
+    // Empty world: nothing to hit.
+    hittable_list none;
+    compiled_scene e = compile_scene(none, point3(0, 0, 0));
+    CHECK(e.sphere_count == 0);
+    ray3f r;
+    r.dir = {0, 0, -1};
+    surface_hit hit;
+    CHECK_FALSE(e.intersect(r, hit));
+}
+
+TEST_CASE("compile_scene: user shapes and materials are kept for the virtual path") {
+    hittable_list world;
+    auto user_shape = std::make_shared<slab>();
+    world.add(user_shape);
+    world.add(std::make_shared<sphere>(point3(0, 0, -5), 1, std::make_shared<odd_material>()));
+    compiled_scene s = compile_scene(world, point3(0, 0, 0));
+    REQUIRE(s.custom_objects.size() == 1);
+    CHECK(s.custom_objects[0] == user_shape.get());
+    CHECK(s.has_custom_materials);
+    REQUIRE(s.materials.size() == 1);
+    CHECK(s.materials[0].kind == material_kind::custom);
+    CHECK(s.materials[0].custom != nullptr);
+}
+
+TEST_CASE("compile_scene rejects invalid spheres and materials") {
+    check_rejected(with(std::make_shared<sphere>(point3(nan_d, 0, 0), 1, grey())), "centre");
+    check_rejected(with(std::make_shared<sphere>(point3(0, inf_d, 0), 1, grey())), "centre");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 0, grey())), "radius");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), -1, grey())), "radius");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), nan_d, grey())), "radius");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), inf_d, grey())), "radius");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, nullptr)), "material");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<lambertian>(color(-0.1, 0, 0)))),
+                   "albedo");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<lambertian>(color(0, nan_d, 0)))),
+                   "albedo");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<metal>(color(1, 1, -1), 0))),
+                   "albedo");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<metal>(color(1, 1, 1), -0.5))),
+                   "fuzz");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<dielectric>(0))), "refraction");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<dielectric>(-1.5))), "refraction");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<dielectric>(nan_d))),
+                   "refraction");
+    hittable_list holes;
+    holes.add(nullptr);
+    check_rejected(holes, "null");
+
+    // A non-finite camera position.
+    hittable_list ok = with(std::make_shared<sphere>(point3(0, 0, 0), 1, grey()));
+    CHECK_THROWS_AS((void)compile_scene(ok, point3(0, nan_d, 0)), scene_error);
+
+    // render() reports the same errors (nothing is rendered from bad input).
+    camera cam;
+    cam.image_width = 8;
+    cam.quiet = true;
+    hittable_list bad = with(std::make_shared<sphere>(point3(0, 0, -2), -1, grey()));
+    CHECK_THROWS_AS((void)render(cam, bad), scene_error);
+}
+
+TEST_CASE("compile_scene rejects a metal with NaN fuzz (documented: 'NaN fuzz ... throws')") {
+    // scene.h lists "NaN fuzz" among the invalid input that compile_scene rejects. A NaN fuzz is
+    // an error in the caller's scene and must not render silently as some other material.
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<metal>(color(1, 1, 1), nan_d))),
+                   "fuzz");
+}
