@@ -54,7 +54,7 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
-                 "  --depth N    maximum bounces per path\n"
+                 "  --depth N    maximum rays per path (the book's max_depth)\n"
                  "  --threads N  worker threads (0 = all cores)\n"
                  "  --seed N     random seed (same seed, same image)\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
