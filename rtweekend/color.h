@@ -29,6 +29,11 @@ inline void write_color(std::ostream& out, const color& pixel_color) {
         << encode_byte(pixel_color.z()) << '\n';
 }
 
+// The book's earlier (v3) form: the sum of `samples_per_pixel` samples, averaged here.
+inline void write_color(std::ostream& out, const color& pixel_color_sum, int samples_per_pixel) {
+    write_color(out, pixel_color_sum / samples_per_pixel);
+}
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES

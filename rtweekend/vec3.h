@@ -88,6 +88,15 @@ constexpr vec3 cross(const vec3& u, const vec3& v) {
 
 inline vec3 unit_vector(const vec3& v) { return v / v.length(); }
 
+// A uniformly distributed point inside the unit sphere (rejection from the enclosing cube), as
+// earlier editions of the book use it.
+inline vec3 random_in_unit_sphere() {
+    while (true) {
+        vec3 p = vec3::random(-1, 1);
+        if (p.length_squared() < 1) return p;
+    }
+}
+
 // A uniformly distributed point in the unit disk (z = 0), by polar mapping of two uniforms.
 inline vec3 random_in_unit_disk() {
     double r = std::sqrt(random_double());
@@ -131,6 +140,7 @@ using rt::cross;
 using rt::dot;
 using rt::point3;
 using rt::random_in_unit_disk;
+using rt::random_in_unit_sphere;
 using rt::random_on_hemisphere;
 using rt::random_unit_vector;
 using rt::reflect;

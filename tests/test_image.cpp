@@ -145,6 +145,13 @@ TEST_CASE("write_color and encode_byte: the book's gamma-2, 8-bit encoding") {
     CHECK(linear_to_gamma(-0.5) == 0);
 }
 
+TEST_CASE("write_color with a sample count (the book's earlier form) averages first") {
+    // Four samples summing to (1.0, 4.0, 0.0) average to (0.25, 1.0, 0.0): "128 255 0" as above.
+    std::ostringstream out;
+    write_color(out, color(1.0, 4.0, 0.0), 4);
+    CHECK(out.str() == "128 255 0\n");
+}
+
 TEST_CASE("write_ppm: byte-exact P3 text") {
     std::ostringstream out;
     write_ppm(out, test_image());

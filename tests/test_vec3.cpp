@@ -194,6 +194,25 @@ TEST_CASE("vec3: random helpers stay in their domains") {
     }
 }
 
+TEST_CASE("vec3: random_in_unit_sphere is uniform in the ball") {
+    // For a uniform point in the unit ball, |p|^2 has mean 3/5 (the density of r is 3r^2, so
+    // E[r^2] = integral 3r^4 dr = 3/5) and variance 3/7 - 9/25 = 12/175; every component has mean 0
+    // and variance 1/5. With n = 20000 draws the standard error of the |p|^2 mean is
+    // sqrt(12/175/20000) = 0.00185; 5 sigma is 0.0093. Component means: sqrt(0.2/20000) = 0.0032,
+    // 5 sigma 0.016.
+    std::srand(7);
+    const int n = 20000;
+    double sum_r2 = 0, sum[3] = {0, 0, 0};
+    for (int i = 0; i < n; ++i) {
+        vec3 p = random_in_unit_sphere();
+        REQUIRE(p.length_squared() < 1);
+        sum_r2 += p.length_squared();
+        for (int k = 0; k < 3; ++k) sum[k] += p[k];
+    }
+    CHECK(std::fabs(sum_r2 / n - 0.6) < 0.0093);
+    for (double s : sum) CHECK(std::fabs(s / n) < 0.016);
+}
+
 TEST_CASE("vec3::random draws z, then y, then x (the book's g++ argument order)") {
     std::srand(2024);
     double z = std::rand() / (RAND_MAX + 1.0);
