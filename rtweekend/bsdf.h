@@ -56,8 +56,8 @@ inline bool scatter_builtin(const material_desc& m, const vec3f& wi, const vec3f
     case material_kind::metal: {
         vec3f d = reflect_f(wi, n);
         if (m.fuzz > 0) {
-            float u1 = rng.next_float(), u2 = rng.next_float();
-            d += m.fuzz * sample_unit_sphere(u1, u2);
+            float u1 = rng.next_float(), u2 = rng.next_float(), u3 = rng.next_float();
+            d += m.fuzz * sample_unit_ball(u1, u2, u3);
         }
         // The book absorbs fuzzed directions that point below the surface.
         if (!(dot(d, n) > 0)) return false;

@@ -1,7 +1,8 @@
 #pragma once
 // material: how a surface scatters light (the book's interface), and the three book materials:
 //   lambertian(albedo)           ideal diffuse
-//   metal(albedo, fuzz)          mirror reflection blurred by a sphere of radius fuzz (<= 1)
+//   metal(albedo, fuzz)          mirror reflection, its direction moved by a uniform random point
+//                                in a ball of radius fuzz (<= 1)
 //   dielectric(refraction_index) glass: reflects or refracts, chosen by Schlick's approximation
 //
 // The renderer recognises these three and uses its own float kernels (bsdf.h), without virtual
@@ -63,8 +64,11 @@ class metal : public material {
     metal(const color& albedo, double fuzz) : albedo_(albedo), fuzz_(fuzz > 1 ? 1 : fuzz) {}
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        // The fuzz offset is a point inside the ball (random_in_unit_sphere), as in the book's
+        // edition that rendered the team's reference images; later editions moved it onto the
+        // sphere's surface, which blurs reflections a little more.
         vec3 reflected = reflect(r_in.direction(), rec.normal);
-        reflected = unit_vector(reflected) + (fuzz_ * random_unit_vector());
+        reflected = unit_vector(reflected) + (fuzz_ * random_in_unit_sphere());
         scattered = ray(rec.p, reflected);
         attenuation = albedo_;
         return dot(scattered.direction(), rec.normal) > 0;

@@ -20,6 +20,10 @@ inline vec3f sample_unit_sphere(float u1, float u2) {
     return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
+// Uniform inside the unit ball: a uniform direction scaled by cbrt(u3), since the volume within
+// radius r grows as r^3.
+inline vec3f sample_unit_ball(float u1, float u2, float u3) { return std::cbrt(u3) * sample_unit_sphere(u1, u2); }
+
 // Uniform on the unit disk (z = 0): radius sqrt(u1) makes the area density constant.
 inline vec3f sample_unit_disk(float u1, float u2) {
     float r = std::sqrt(u1);

@@ -55,6 +55,35 @@ TEST_CASE("sample_unit_sphere: unit vectors, uniform moments") {
     CHECK(std::fabs(top.x) < 1e-7f);
 }
 
+TEST_CASE("sample_unit_ball: inside the unit ball, uniform by volume") {
+    // Uniform in the ball: P(|p| < r) = r^3, so P(|p| < 1/2) = 1/8 and E[|p|^2] = 3/5; each
+    // coordinate has mean 0 and E[x^2] = 1/5. The third uniform alone sets the radius: cbrt(u3).
+    const int n = 40;
+    double s_r2 = 0, sx = 0, sxx = 0;
+    long inner = 0, count = 0;
+    for (int k = 0; k < n; ++k) {
+        float u3 = (k + 0.5f) / n;
+        for_grid(n, [&](float u1, float u2) {
+            vec3f p = sample_unit_ball(u1, u2, u3);
+            float r2 = length_squared(p);
+            if (!(r2 < 1.0f + 1e-6f)) FAIL_CHECK("outside the ball");
+            s_r2 += r2;
+            sx += p.x;
+            sxx += p.x * p.x;
+            if (r2 < 0.25f) ++inner;
+            ++count;
+        });
+        CHECK(length(sample_unit_ball(0.3f, 0.7f, u3)) == doctest::Approx(std::cbrt(u3)).epsilon(1e-6));
+    }
+    const double N = double(count);
+    // Midpoint sums over 40 radius strata: E[cbrt(u)^2] = 3/5 to about 1e-4.
+    CHECK(s_r2 / N == doctest::Approx(0.6).epsilon(1e-3));
+    CHECK(std::fabs(sx / N) < 1e-4);
+    CHECK(sxx / N == doctest::Approx(0.2).epsilon(1e-3));
+    // r < 1/2 <=> u3 < 1/8 = 5 of the 40 strata.
+    CHECK(inner == 5L * n * n);
+}
+
 TEST_CASE("sample_unit_disk: inside the unit disk, uniform by area") {
     // Uniform on the disk: E[r^2] = 1/2, P(r < 1/2) = 1/4, E[x] = E[y] = 0, E[x^2] = 1/4.
     const int n = 200;
