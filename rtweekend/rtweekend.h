@@ -4,19 +4,30 @@
 // shared_ptr, make_shared, infinity, pi, degrees_to_radians, random_double, and every rt class
 // a book chapter introduces (unless RTWEEKEND_NO_GLOBAL_NAMES is defined).
 
-#include "camera.h"
-#include "color.h"
+// The teaching surface, in the book's order.
 #include "constants.h"
+#include "rng.h"
+#include "vec3.h"
+#include "color.h"
+#include "ray.h"
+#include "interval.h"
 #include "hittable.h"
 #include "hittable_list.h"
-#include "image.h"
-#include "interval.h"
-#include "material.h"
-#include "ray.h"
-#include "render.h"
-#include "rng.h"
 #include "sphere.h"
-#include "vec3.h"
+#include "material.h"
+#include "camera.h"
+
+// The engine underneath, and files.
+#include "bsdf.h"
+#include "image.h"
+#include "ray_offset.h"
+#include "render.h"
+#include "sampling.h"
+#include "scene.h"
+#include "scene_error.h"
+#include "scene_io.h"
+#include "simd.h"
+#include "vec3f.h"
 
 #include <cmath>
 #include <iostream>

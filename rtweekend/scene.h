@@ -14,10 +14,10 @@
 // refraction index, a sphere without a material) throws scene_error at compile time.
 
 #include "bsdf.h"
-#include "scene_error.h"
 #include "hittable.h"
 #include "hittable_list.h"
 #include "material.h"
+#include "scene_error.h"
 #include "simd.h"
 #include "sphere.h"
 #include "vec3f.h"
@@ -25,7 +25,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <stdexcept>
 #include <string>
 #include <typeinfo>
 #include <unordered_map>
