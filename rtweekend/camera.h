@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -97,9 +98,11 @@ class camera {
         double viewport_height = 2 * h * focus_dist;
         double viewport_width = viewport_height * (double(f.width) / f.height);
 
-        // Calculate the u,v,w unit basis vectors for the camera coordinate frame.
-        vec3 w = unit_vector(lookfrom - lookat);
-        vec3 u = unit_vector(cross(vup, w));
+        // Calculate the u,v,w unit basis vectors for the camera coordinate frame. Only the
+        // directions of lookfrom - lookat and vup matter: they are rescaled first, so that very
+        // long or very short vectors do not overflow or underflow when squared.
+        vec3 w = unit_vector(rescaled(lookfrom - lookat));
+        vec3 u = unit_vector(cross(rescaled(vup), w));
         vec3 v = cross(w, u);
 
         // Vectors across the horizontal and down the vertical viewport edges.
@@ -116,6 +119,15 @@ class camera {
 
         // Calculate the camera defocus disk basis vectors.
         double defocus_radius = focus_dist * std::tan(degrees_to_radians(defocus_angle / 2));
+
+        // Rays are generated in float as normalize(target - origin), with the target on the focus
+        // plane and the origin on the lens. Its squared length must neither overflow (the farthest
+        // target, a viewport corner, plus the lens radius) nor fall below float's normal range
+        // (the nearest, at focus_dist along the axis, a third of it in one component at least).
+        double reach = viewport_upper_left.length() + defocus_radius;
+        require(reach < 1e18 && focus_dist > 1e-18,
+                "focus_dist, vfov and defocus_angle put the viewport outside the float range rays are made in "
+                "(focus_dist must exceed 1e-18 and the viewport corners lie within 1e18 of lookfrom)");
         f.defocus_disk_u = vec3f(u * defocus_radius);
         f.defocus_disk_v = vec3f(v * defocus_radius);
         f.thin_lens = defocus_angle > 0;
@@ -124,6 +136,13 @@ class camera {
 
   private:
     static bool finite3(const vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+    // v divided by its largest absolute component: the same direction, a length in [1, sqrt(3)]
+    // (v itself if it is zero).
+    static vec3 rescaled(const vec3& v) {
+        double m = std::fmax(std::fabs(v.x()), std::fmax(std::fabs(v.y()), std::fabs(v.z())));
+        return m > 0 ? v / m : v;
+    }
 
     static void require(bool ok, const std::string& message) {
         if (!ok) throw scene_error("camera: " + message);
@@ -145,16 +164,23 @@ class camera {
         require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
                 "vfov must be between 0 and 180 degrees (exclusive), got " + std::to_string(vfov));
         require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");
-        require((lookfrom - lookat).length_squared() > 0, "lookfrom and lookat must differ");
-        require(cross(vup, unit_vector(lookfrom - lookat)).length_squared() > 1e-20,
-                "vup must be non-zero and not parallel to the view direction");
+        const vec3 view = lookfrom - lookat;
+        require(view.x() != 0 || view.y() != 0 || view.z() != 0, "lookfrom and lookat must differ");
+        require(finite3(view), "lookfrom - lookat overflows: the points are too far apart");
+        require(vup.x() != 0 || vup.y() != 0 || vup.z() != 0, "vup must be non-zero");
+        // sin^2 of the angle between vup and the view direction, scale-free.
+        require(cross(unit_vector(rescaled(vup)), unit_vector(rescaled(view))).length_squared() > 1e-20,
+                "vup must not be parallel to the view direction");
         require(std::isfinite(defocus_angle) && defocus_angle >= 0 && defocus_angle < 180,
                 "defocus_angle must be in [0, 180) degrees, got " + std::to_string(defocus_angle));
         require(std::isfinite(focus_dist) && focus_dist > 0,
                 "focus_dist must be positive and finite, got " + std::to_string(focus_dist));
+        // The renderer works in float: a background beyond float's range would be infinite there.
+        constexpr double float_max = std::numeric_limits<float>::max();
         require(!background || (finite3(*background) && background->x() >= 0 && background->y() >= 0 &&
-                                background->z() >= 0),
-                "background must be finite and non-negative");
+                                background->z() >= 0 && background->x() <= float_max &&
+                                background->y() <= float_max && background->z() <= float_max),
+                "background must be finite and non-negative (and at most 3.4e38, float's largest value)");
         require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
     }
 };

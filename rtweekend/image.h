@@ -9,6 +9,7 @@
 //   write_ppm(out, img)        P3 to a stream, byte for byte what the book's code prints.
 //
 // Gamma (the book's square root) and 8-bit quantisation happen only here, at write time.
+// Reading files back is image_read.h's job (kept apart so that this header needs no decoder).
 
 #include "color.h"
 #include "scene_error.h"

@@ -16,9 +16,12 @@
 #include "sphere.h"
 #include "material.h"
 #include "camera.h"
+#include "triangle.h"
+#include "mesh.h"
 
 // The engine underneath, and files.
 #include "bsdf.h"
+#include "bvh.h"
 #include "image.h"
 #include "ray_offset.h"
 #include "render.h"

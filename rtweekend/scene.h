@@ -2,26 +2,38 @@
 // The compiled scene: what the renderer actually traces.
 //
 //   compiled_scene compile_scene(const hittable& world, const point3& origin);
+//   scene.intersect(ray, hit)   the closest hit        scene.occluded(ray)   any hit at all
 //
-// compile_scene walks the world once, before rendering. Built-in spheres go into flat float
-// arrays (one array per coordinate, so the intersection loop runs across several spheres per
-// SIMD instruction); built-in materials go into a tagged table; anything else (a user's own
+// compile_scene walks the world once, before rendering. Built-in spheres and triangles (single
+// ones and whole meshes) go into flat float arrays, one array per coordinate, in the order of
+// the leaves of a BVH built over all of them (bvh.h), so a leaf's primitives are tested several
+// per SIMD instruction; built-in materials go into a tagged table; anything else (a user's own
 // hittable or material subclass) is kept by pointer and called through its virtual functions.
 // Positions are stored relative to `origin` (the camera), computed in double before rounding to
-// float, so a scene far from the world origin renders as precisely as one near it.
+// float, so a scene far from the world origin renders as precisely as one near it; shared mesh
+// vertices round identically, so meshes stay watertight.
+//
+// A scene pays only for what it has: the traversal is compiled separately for spheres only,
+// triangles only, and both, and a scene of a handful of primitives has no BVH nodes at all.
 //
 // Invalid input (NaN or infinite coordinates, non-positive radii, negative colours, NaN fuzz or
-// refraction index, a sphere without a material) throws scene_error at compile time.
+// refraction index, a primitive without a material, mesh indices out of range) throws
+// scene_error at compile time. Triangles of zero area can never be hit: they are left out and
+// counted.
 
 #include "bsdf.h"
+#include "bvh.h"
 #include "hittable.h"
 #include "hittable_list.h"
 #include "material.h"
+#include "mesh.h"
 #include "scene_error.h"
 #include "simd.h"
 #include "sphere.h"
+#include "triangle.h"
 #include "vec3f.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -47,16 +59,22 @@ struct surface_hit {
 
 class compiled_scene {
   public:
-    // Lanes processed together by the sphere loop; arrays are padded to a multiple of this.
-    static constexpr size_t sphere_block = 16;
-
     vec3 origin;                          // world position that float coordinates are relative to
     std::vector<material_desc> materials;
-    size_t sphere_count = 0;
 
-    // Sphere arrays (padded with spheres that can never be hit).
+    // Spheres, in BVH leaf order.
+    size_t sphere_count = 0;
     std::vector<float> sphere_x, sphere_y, sphere_z, sphere_r2, sphere_r, sphere_offset;
     std::vector<uint32_t> sphere_material;
+
+    // Triangles, in BVH leaf order: coordinate `axis` of vertex `v` of triangle i is
+    // triangle_vertex[3 * v + axis][i].
+    size_t triangle_count = 0;
+    size_t degenerate_triangles = 0; // of zero area, left out
+    std::array<std::vector<float>, 9> triangle_vertex;
+    std::vector<uint32_t> triangle_material;
+
+    bvh8 bvh; // over the spheres and triangles
 
     // User-written hittables, rendered through their virtual hit(). Owned by the world.
     std::vector<const hittable*> custom_objects;
@@ -65,9 +83,24 @@ class compiled_scene {
 
     // The closest hit with t in (ray.tmin, ray.tmax); false when the ray escapes.
     bool intersect(const ray3f& r, surface_hit& hit) const;
+    // Whether anything at all is hit with t in (ray.tmin, ray.tmax): for shadow rays.
+    bool occluded(const ray3f& r) const;
 
     // The material entry for a material pointer met during rendering (user shapes only).
     material_desc describe_material(const material* m) const;
+
+    // Bytes held for tracing: primitive arrays and BVH nodes.
+    size_t geometry_bytes() const;
+
+  private:
+    struct hit_ref {
+        primitive_type type = primitive_type::sphere;
+        uint32_t index = UINT32_MAX;
+    };
+    template <bool Spheres, bool Triangles, bool AnyHit>
+    bool trace(const ray3f& r, float& tmax, hit_ref& best) const;
+    bool trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit) const;
+    void fill_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const;
 };
 
 compiled_scene compile_scene(const hittable& world, const point3& origin);
@@ -85,7 +118,13 @@ inline std::string describe(const vec3& v) {
 inline void check_color(const color& c, const char* what) {
     if (!finite3(c) || c.x() < 0 || c.y() < 0 || c.z() < 0)
         throw scene_error(std::string(what) + " must be finite and non-negative, got " + describe(c));
+    // The renderer multiplies in float: a colour beyond float's range would become infinite.
+    if (!is_finite(vec3f(c))) throw scene_error(std::string(what) + " is too large for single precision, got " + describe(c));
 }
+
+// The float intersection tests square coordinates (relative to the camera) and radii, so they
+// must stay well inside float's range (squares up to 3.4e38).
+inline constexpr double max_float_extent = 1e18;
 
 // The table entry for a built-in material, or a custom one.
 inline material_desc make_material_desc(const material* m) {
@@ -131,26 +170,67 @@ class scene_compiler {
             }
         } else if (type == typeid(sphere)) {
             add_sphere(static_cast<const sphere&>(object));
+        } else if (type == typeid(triangle)) {
+            const auto& t = static_cast<const triangle&>(object);
+            if (!t.mat()) throw scene_error("triangle at " + describe(t.a()) + " has no material");
+            uint32_t m = material_index(t.mat().get());
+            if (!add_triangle(t.a(), t.b(), t.c(), m))
+                throw scene_error("triangle " + describe(t.a()) + " " + describe(t.b()) + " " + describe(t.c()) +
+                                  " has zero area");
+        } else if (type == typeid(triangle_mesh)) {
+            add_mesh(static_cast<const triangle_mesh&>(object));
         } else {
             out_.custom_objects.push_back(&object);
         }
     }
 
+    // Builds the BVH and lays the primitives out in its leaf order.
     void finish() {
-        out_.sphere_count = out_.sphere_x.size();
-        // Pad to whole blocks with spheres of negative squared radius: never hit.
-        while (out_.sphere_x.size() % compiled_scene::sphere_block != 0) {
-            out_.sphere_x.push_back(0);
-            out_.sphere_y.push_back(0);
-            out_.sphere_z.push_back(0);
-            out_.sphere_r2.push_back(-1);
-            out_.sphere_r.push_back(0);
-            out_.sphere_offset.push_back(0);
-            out_.sphere_material.push_back(0);
+        std::vector<bvh_primitive> prims;
+        prims.reserve(spheres_.size() + triangles_.size());
+        for (size_t i = 0; i < spheres_.size(); ++i) {
+            const sphere_input& s = spheres_[i];
+            box3f b;
+            // Rounded outwards: the box must contain the float sphere the leaf test sees.
+            b.lo = {down(s.c.x() - s.r), down(s.c.y() - s.r), down(s.c.z() - s.r)};
+            b.hi = {up(s.c.x() + s.r), up(s.c.y() + s.r), up(s.c.z() + s.r)};
+            prims.push_back({b, primitive_type::sphere, uint32_t(i)});
         }
+        for (size_t i = 0; i < triangles_.size(); ++i) {
+            box3f b;
+            for (const vec3f& v : triangles_[i].v) b.grow(v);
+            prims.push_back({b, primitive_type::triangle, uint32_t(i)});
+        }
+        out_.bvh = build_bvh8(prims);
+
+        // Leaf loads read floatv::width lanes from any leaf start: pad every array that far.
+        const size_t pad = floatv::width;
+        const auto& sphere_order = out_.bvh.order[size_t(primitive_type::sphere)];
+        out_.sphere_count = sphere_order.size();
+        for (uint32_t i : sphere_order) push_sphere(spheres_[i]);
+        for (size_t k = 0; k < pad; ++k) push_sphere({vec3(0, 0, 0), 0, 0}, /*never_hit=*/true);
+
+        const auto& triangle_order = out_.bvh.order[size_t(primitive_type::triangle)];
+        out_.triangle_count = triangle_order.size();
+        for (uint32_t i : triangle_order) push_triangle(triangles_[i]);
+        if (out_.triangle_count > 0)
+            for (size_t k = 0; k < pad; ++k) push_triangle({{vec3f(), vec3f(), vec3f()}, 0});
     }
 
   private:
+    struct sphere_input {
+        vec3 c; // relative to the scene origin, in double
+        double r;
+        uint32_t material;
+    };
+    struct triangle_input {
+        std::array<vec3f, 3> v;
+        uint32_t material;
+    };
+
+    static float down(double x) { return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity()); }
+    static float up(double x) { return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity()); }
+
     uint32_t material_index(const material* m) {
         auto found = index_.find(m);
         if (found != index_.end()) return found->second;
@@ -167,24 +247,84 @@ class scene_compiler {
         if (!(std::isfinite(s.radius()) && s.radius() > 0))
             throw scene_error("sphere radius must be positive and finite, got " + std::to_string(s.radius()));
         if (!s.mat()) throw scene_error("sphere at " + describe(s.center()) + " has no material");
+        vec3 c = s.center() - out_.origin;
+        if (!(std::fmax(std::fabs(c.x()), std::fmax(std::fabs(c.y()), std::fabs(c.z()))) + s.radius() < max_float_extent))
+            throw scene_error("sphere at " + describe(s.center()) + " with radius " + std::to_string(s.radius()) +
+                              " is out of single-precision range: its distance from the camera plus its radius must "
+                              "be below 1e18");
+        spheres_.push_back({c, s.radius(), material_index(s.mat().get())});
+    }
 
-        vec3 c = s.center() - out_.origin; // in double, then rounded once
-        auto r = static_cast<float>(s.radius());
-        vec3f cf(c);
+    // False when the triangle has zero area in float (it could never be hit).
+    bool add_triangle(const point3& a, const point3& b, const point3& c, uint32_t material) {
+        for (const point3* p : {&a, &b, &c}) {
+            if (!finite3(*p)) throw scene_error("triangle vertex must be finite, got " + describe(*p));
+            vec3 q = *p - out_.origin;
+            if (!(std::fmax(std::fabs(q.x()), std::fmax(std::fabs(q.y()), std::fabs(q.z()))) < max_float_extent))
+                throw scene_error("triangle vertex " + describe(*p) +
+                                  " is out of single-precision range: it must be within 1e18 of the camera");
+        }
+        // Relative to the origin in double, then rounded once: a vertex shared by two triangles
+        // gets the same float coordinates in both.
+        triangle_input t{{vec3f(a - out_.origin), vec3f(b - out_.origin), vec3f(c - out_.origin)}, material};
+        vec3 e1 = t.v[1].to_double() - t.v[0].to_double(), e2 = t.v[2].to_double() - t.v[0].to_double();
+        if (cross(e1, e2).length_squared() == 0) return false;
+        triangles_.push_back(t);
+        return true;
+    }
+
+    void add_mesh(const triangle_mesh& mesh) {
+        if (!mesh.mat) throw scene_error("triangle mesh has no material");
+        uint32_t m = material_index(mesh.mat.get());
+        for (size_t i = 0; i < mesh.faces.size(); ++i) {
+            const auto& f = mesh.faces[i];
+            for (uint32_t v : f)
+                if (v >= mesh.positions.size())
+                    throw scene_error("triangle mesh face " + std::to_string(i) + " uses vertex " + std::to_string(v) +
+                                      " of " + std::to_string(mesh.positions.size()));
+            if (!add_triangle(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]], m))
+                ++out_.degenerate_triangles;
+        }
+    }
+
+    void push_sphere(const sphere_input& s, bool never_hit = false) {
+        vec3f cf(s.c);
+        auto r = static_cast<float>(s.r);
         out_.sphere_x.push_back(cf.x);
         out_.sphere_y.push_back(cf.y);
         out_.sphere_z.push_back(cf.z);
-        out_.sphere_r2.push_back(r * r);
+        out_.sphere_r2.push_back(never_hit ? -1.0f : r * r); // negative squared radius: no ray crosses
         out_.sphere_r.push_back(r);
         // Float evaluation of |o - c|^2 - r^2 is only good to a few ulps of the larger of |c| and
         // r, so a spawned ray must start at least that far off the surface (on top of the
         // hit-point offset) or it may re-hit the sphere it leaves: 2^-21 is about 8 ulps.
         out_.sphere_offset.push_back(std::ldexp(max_abs_component(cf) + r, -21));
-        out_.sphere_material.push_back(material_index(s.mat().get()));
+        out_.sphere_material.push_back(s.material);
+    }
+
+    void push_triangle(const triangle_input& t) {
+        for (int v = 0; v < 3; ++v)
+            for (int axis = 0; axis < 3; ++axis) out_.triangle_vertex[size_t(3 * v + axis)].push_back(t.v[size_t(v)][axis]);
+        out_.triangle_material.push_back(t.material);
     }
 
     compiled_scene& out_;
     std::unordered_map<const material*, uint32_t> index_;
+    std::vector<sphere_input> spheres_;
+    std::vector<triangle_input> triangles_;
+};
+
+// The ray in the frame of the watertight triangle test (triangle.h), for all of a leaf's lanes.
+struct triangle_ray {
+    sheared_ray<float> shear;
+    float ox = 0, oy = 0, oz = 0; // origin, permuted to (kx, ky, kz)
+
+    triangle_ray() = default;
+    explicit triangle_ray(const ray3f& r) : shear(r.dir) {
+        ox = r.origin[shear.kx];
+        oy = r.origin[shear.ky];
+        oz = r.origin[shear.kz];
+    }
 };
 
 } // namespace detail
@@ -204,67 +344,185 @@ inline material_desc compiled_scene::describe_material(const material* m) const 
     return detail::make_material_desc(m);
 }
 
-inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
-    hit.custom_object = nullptr;
-    // Spheres, floatv::width at a time: every lane keeps its own closest t and sphere index (as
-    // a float, exact below 2^24); the lanes are reduced at the end.
-    constexpr size_t W = floatv::width;
-    static_assert(sphere_block % W == 0, "sphere arrays are padded to whole SIMD blocks");
-    alignas(64) static constexpr float lane_offsets[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    const floatv ox(r.origin.x), oy(r.origin.y), oz(r.origin.z);
-    const floatv dx(r.dir.x), dy(r.dir.y), dz(r.dir.z), tmin(r.tmin), zero(0.0f);
-    const floatv lanes = floatv::load(lane_offsets);
-    floatv best_t(r.tmax), best_i(-1.0f);
-    const float *cx = sphere_x.data(), *cy = sphere_y.data(), *cz = sphere_z.data(), *r2 = sphere_r2.data();
-    const size_t n = sphere_x.size();
-    for (size_t i = 0; i < n; i += W) {
-        // Stable ray-sphere test for a unit direction (see sphere_roots in sphere.h).
-        floatv ocx = floatv::load(cx + i) - ox, ocy = floatv::load(cy + i) - oy, ocz = floatv::load(cz + i) - oz;
-        floatv rr = floatv::load(r2 + i);
-        floatv h = dx * ocx + dy * ocy + dz * ocz;
-        floatv px = ocx - h * dx, py = ocy - h * dy, pz = ocz - h * dz;
-        floatv disc = rr - (px * px + py * py + pz * pz);
-        maskv crosses = disc >= zero;
-        if (!any(crosses)) continue; // the usual case: the ray passes all of these spheres by
-        floatv c = (ocx * ocx + ocy * ocy + ocz * ocz) - rr;
-        floatv s = sqrt(max(disc, zero));
-        floatv q = select(h >= zero, h + s, h - s);
-        floatv ta = c / q;
-        floatv t0 = min(ta, q), t1 = max(ta, q);
-        floatv t = select(t0 > tmin, t0, t1);
-        maskv closer = crosses & (t > tmin) & (t < best_t);
-        best_t = select(closer, t, best_t);
-        best_i = select(closer, lanes + floatv(float(i)), best_i);
-    }
-    alignas(64) float lane_t[W], lane_i[W];
-    best_t.store(lane_t);
-    best_i.store(lane_i);
-    float t = r.tmax;
-    uint32_t index = UINT32_MAX;
-    for (size_t k = 0; k < W; ++k) {
-        if (lane_i[k] < 0) continue;
-        auto candidate = static_cast<uint32_t>(lane_i[k]);
-        if (lane_t[k] < t || (lane_t[k] == t && candidate < index)) {
-            t = lane_t[k];
-            index = candidate;
-        }
-    }
+inline size_t compiled_scene::geometry_bytes() const {
+    size_t bytes = bvh.stats.bytes();
+    bytes += (sphere_x.size() * 6) * sizeof(float) + sphere_material.size() * sizeof(uint32_t);
+    for (const auto& v : triangle_vertex) bytes += v.size() * sizeof(float);
+    bytes += triangle_material.size() * sizeof(uint32_t);
+    return bytes;
+}
 
-    bool found = false;
-    if (index != UINT32_MAX) {
-        found = true;
-        vec3f center{cx[index], cy[index], cz[index]};
-        float radius = sphere_r[index];
+template <bool Spheres, bool Triangles, bool AnyHit>
+bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
+    constexpr size_t W = floatv::width;
+    const floatv lanes = lane_index();
+    const floatv tmin(r.tmin), zero(0.0f);
+
+    // The nearest of the lanes that hit, if nearer than t_best: it becomes the best hit.
+    auto take_closest = [&](maskv hits, floatv t, primitive_type type, uint32_t first_lane, float& t_best) {
+        alignas(64) float lane_t[W];
+        t.store(lane_t);
+        for (unsigned mask = bits(hits); mask; mask &= mask - 1) {
+            unsigned k = unsigned(__builtin_ctz(mask));
+            if (lane_t[k] < t_best) {
+                t_best = lane_t[k];
+                best = {type, first_lane + k};
+            }
+        }
+    };
+
+    // Spheres: the stable test of sphere.h, W spheres at a time.
+    auto sphere_leaf = [&](uint32_t first, uint32_t count, float& t_best) {
+        const floatv ox(r.origin.x), oy(r.origin.y), oz(r.origin.z);
+        const floatv dx(r.dir.x), dy(r.dir.y), dz(r.dir.z);
+        bool found = false;
+        for (uint32_t i = first; i < first + count; i += W) {
+            floatv ocx = floatv::load(&sphere_x[i]) - ox, ocy = floatv::load(&sphere_y[i]) - oy,
+                   ocz = floatv::load(&sphere_z[i]) - oz;
+            floatv rr = floatv::load(&sphere_r2[i]);
+            floatv h = dx * ocx + dy * ocy + dz * ocz;
+            floatv px = ocx - h * dx, py = ocy - h * dy, pz = ocz - h * dz;
+            floatv disc = rr - (px * px + py * py + pz * pz);
+            maskv crosses = (disc >= zero) & (lanes < floatv(float(first + count - i)));
+            if (!any(crosses)) continue;
+            floatv c = (ocx * ocx + ocy * ocy + ocz * ocz) - rr;
+            floatv s = sqrt(max(disc, zero));
+            floatv q = select(h >= zero, h + s, h - s);
+            floatv ta = c / q;
+            floatv t0 = min(ta, q), t1 = max(ta, q);
+            floatv t = select(t0 > tmin, t0, t1);
+            maskv hits = crosses & (t > tmin) & (t < floatv(t_best));
+            if (!any(hits)) continue;
+            if (AnyHit) return true;
+            take_closest(hits, t, primitive_type::sphere, i, t_best);
+            found = true;
+        }
+        return found;
+    };
+
+    // Triangles: the watertight test of triangle.h, W triangles at a time.
+    detail::triangle_ray tr;
+    if constexpr (Triangles) tr = detail::triangle_ray(r); // a sphere-only scene skips the set-up
+    auto triangle_leaf = [&](uint32_t first, uint32_t count, float& t_best) {
+        const int kx = tr.shear.kx, ky = tr.shear.ky, kz = tr.shear.kz;
+        const floatv sx(tr.shear.sx), sy(tr.shear.sy), sz(tr.shear.sz);
+        const floatv ox(tr.ox), oy(tr.oy), oz(tr.oz);
+        bool found = false;
+        for (uint32_t i = first; i < first + count; i += W) {
+            auto coord = [&](int v, int axis) { return floatv::load(&triangle_vertex[size_t(3 * v + axis)][i]); };
+            floatv az = coord(0, kz) - oz, bz = coord(1, kz) - oz, cz = coord(2, kz) - oz;
+            floatv ax = coord(0, kx) - ox - sx * az, ay = coord(0, ky) - oy - sy * az;
+            floatv bx = coord(1, kx) - ox - sx * bz, by = coord(1, ky) - oy - sy * bz;
+            floatv cx = coord(2, kx) - ox - sx * cz, cy = coord(2, ky) - oy - sy * cz;
+            floatv u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+            maskv valid = lanes < floatv(float(first + count - i));
+            maskv on_edge = valid & ((u == zero) | (v == zero) | (w == zero));
+            if (any(on_edge)) {
+                // The ray passes exactly through an edge or vertex in float: decide in double,
+                // as Woop et al. do, so the neighbouring triangles agree.
+                alignas(64) float lu[W], lv[W], lw[W];
+                u.store(lu);
+                v.store(lv);
+                w.store(lw);
+                const sheared_ray<double> shear(r.dir.to_double());
+                const vec3 o = r.origin.to_double();
+                for (unsigned mask = bits(on_edge); mask; mask &= mask - 1) {
+                    unsigned k = unsigned(__builtin_ctz(mask));
+                    auto vertex = [&](int vi) {
+                        return vec3(triangle_vertex[size_t(3 * vi)][i + k], triangle_vertex[size_t(3 * vi + 1)][i + k],
+                                    triangle_vertex[size_t(3 * vi + 2)][i + k]) - o;
+                    };
+                    double du, dv, dw;
+                    triangle_edge_functions(shear, vertex(0), vertex(1), vertex(2), du, dv, dw);
+                    lu[k] = float(du);
+                    lv[k] = float(dv);
+                    lw[k] = float(dw);
+                }
+                u = floatv::load(lu);
+                v = floatv::load(lv);
+                w = floatv::load(lw);
+            }
+            maskv inside = ((u >= zero) & (v >= zero) & (w >= zero)) | ((u <= zero) & (v <= zero) & (w <= zero));
+            maskv candidates = valid & inside;
+            if (!any(candidates)) continue;
+            floatv det = u + v + w;
+            floatv t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det; // det = 0: inf or NaN, rejected
+            maskv hits = candidates & (t > tmin) & (t < floatv(t_best));
+            if (!any(hits)) continue;
+            if (AnyHit) return true;
+            take_closest(hits, t, primitive_type::triangle, i, t_best);
+            found = true;
+        }
+        return found;
+    };
+
+    return traverse<AnyHit>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
+        const uint32_t first = bvh_ref::first(ref), count = bvh_ref::count(ref);
+        if constexpr (Spheres && Triangles) {
+            return bvh_ref::type(ref) == primitive_type::sphere ? sphere_leaf(first, count, t_best)
+                                                               : triangle_leaf(first, count, t_best);
+        } else if constexpr (Spheres) {
+            return sphere_leaf(first, count, t_best);
+        } else {
+            return triangle_leaf(first, count, t_best);
+        }
+    });
+}
+
+// Picks the traversal compiled for the primitive kinds this scene has.
+inline bool compiled_scene::trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit) const {
+    const bool s = sphere_count > 0, t = triangle_count > 0;
+    if (any_hit) {
+        if (s && t) return trace<true, true, true>(r, tmax, best);
+        if (s) return trace<true, false, true>(r, tmax, best);
+        if (t) return trace<false, true, true>(r, tmax, best);
+    } else {
+        if (s && t) return trace<true, true, false>(r, tmax, best);
+        if (s) return trace<true, false, false>(r, tmax, best);
+        if (t) return trace<false, true, false>(r, tmax, best);
+    }
+    return false;
+}
+
+inline void compiled_scene::fill_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const {
+    const uint32_t i = best.index;
+    hit.t = t;
+    hit.custom_object = nullptr;
+    if (best.type == primitive_type::sphere) {
+        vec3f center{sphere_x[i], sphere_y[i], sphere_z[i]};
         // Re-project the hit point onto the sphere: removes the error of o + t d along the ray.
         vec3f outward = normalize(r.at(t) - center);
-        hit.t = t;
-        hit.p = center + radius * outward;
+        hit.p = center + sphere_r[i] * outward;
         hit.front_face = dot(r.dir, outward) < 0;
         hit.normal = hit.front_face ? outward : -outward;
-        hit.offset = sphere_offset[index];
-        hit.material = sphere_material[index];
-        hit.custom_object = nullptr;
+        hit.offset = sphere_offset[i];
+        hit.material = sphere_material[i];
+        return;
     }
+    // Triangle: the point from its barycentric weights lies on the triangle, unlike o + t d.
+    auto vertex = [&](int v) {
+        return vec3(triangle_vertex[size_t(3 * v)][i], triangle_vertex[size_t(3 * v + 1)][i],
+                    triangle_vertex[size_t(3 * v + 2)][i]);
+    };
+    const vec3 a = vertex(0), b = vertex(1), c = vertex(2), o = r.origin.to_double();
+    double u, v, w;
+    triangle_edge_functions(sheared_ray<double>(r.dir.to_double()), a - o, b - o, c - o, u, v, w);
+    double det = u + v + w;
+    vec3 p = det != 0 ? (u * a + v * b + w * c) / det : r.at(t).to_double();
+    vec3f outward = vec3f(unit_vector(cross(b - a, c - a)));
+    hit.p = vec3f(p);
+    hit.front_face = dot(r.dir, outward) < 0;
+    hit.normal = hit.front_face ? outward : -outward;
+    hit.offset = 0; // the barycentric point is within an ulp of the plane; the ray offset suffices
+    hit.material = triangle_material[i];
+}
+
+inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
+    hit.custom_object = nullptr;
+    float t = r.tmax;
+    hit_ref best;
+    bool found = trace_any_feature(r, t, best, false);
+    if (found) fill_hit(r, t, best, hit);
 
     // User-written hittables, in double precision and world coordinates.
     if (!custom_objects.empty()) {
@@ -289,6 +547,19 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
         }
     }
     return found;
+}
+
+inline bool compiled_scene::occluded(const ray3f& r) const {
+    float t = r.tmax;
+    hit_ref best;
+    if (trace_any_feature(r, t, best, true)) return true;
+    if (!custom_objects.empty()) {
+        ray world_ray(origin + r.origin.to_double(), r.dir.to_double());
+        hit_record rec;
+        for (const hittable* object : custom_objects)
+            if (object->hit(world_ray, interval(r.tmin, r.tmax), rec)) return true;
+    }
+    return false;
 }
 
 } // namespace rt

@@ -9,18 +9,25 @@
 //                                defocus_angle_deg d | focus_dist d | aspect_ratio r |
 //                                image_width n | image_height n | samples_per_pixel n |
 //                                max_depth n | background r g b | seed n
-//   sphere cx cy cz radius <lambertian|metal|dielectric> r g b fuzz ior
+//   sphere cx cy cz radius <material>
+//   triangle ax ay az bx by bz cx cy cz <material>
+//   mesh file.obj <material>     an OBJ mesh; a relative path is relative to the scene file
+// where <material> is: <lambertian|metal|dielectric> r g b fuzz ior (all five numbers always
+// given; a material ignores those it does not use).
 
 #include "camera.h"
 #include "hittable_list.h"
 #include "material.h"
+#include "mesh.h"
 #include "scene_error.h"
 #include "sphere.h"
+#include "triangle.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <memory>
@@ -132,29 +139,52 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
     }
 }
 
+// The material at the end of a primitive line: <lambertian|metal|dielectric> r g b fuzz ior,
+// starting at field i.
+inline std::shared_ptr<material> parse_material(const scene_line& line, size_t i) {
+    const std::string& kind = line.word(i);
+    color albedo = line.vector(i + 1, "albedo");
+    if (albedo.x() < 0 || albedo.y() < 0 || albedo.z() < 0) line.fail("albedo must be non-negative");
+    double fuzz = line.number(i + 4, "fuzz");
+    double ior = line.number(i + 5, "ior");
+    if (kind == "lambertian") return std::make_shared<lambertian>(albedo);
+    if (kind == "metal") {
+        if (fuzz < 0) line.fail("metal fuzz must be non-negative, got " + line.word(i + 4));
+        return std::make_shared<metal>(albedo, fuzz);
+    }
+    if (kind == "dielectric") {
+        if (!(ior > 0)) line.fail("dielectric ior must be positive, got " + line.word(i + 5));
+        return std::make_shared<dielectric>(ior);
+    }
+    line.fail("unknown material '" + kind + "' (expected lambertian, metal or dielectric)");
+}
+
 inline std::shared_ptr<hittable> parse_sphere_line(const scene_line& line) {
     line.expect_count(11, "sphere cx cy cz radius material r g b fuzz ior");
     point3 center = line.vector(1, "sphere centre");
     double radius = line.number(4, "sphere radius");
     if (!(radius > 0)) line.fail("sphere radius must be positive, got " + line.word(4));
-    const std::string& kind = line.word(5);
-    color albedo = line.vector(6, "albedo");
-    if (albedo.x() < 0 || albedo.y() < 0 || albedo.z() < 0) line.fail("albedo must be non-negative");
-    double fuzz = line.number(9, "fuzz");
-    double ior = line.number(10, "ior");
-    std::shared_ptr<material> mat;
-    if (kind == "lambertian") {
-        mat = std::make_shared<lambertian>(albedo);
-    } else if (kind == "metal") {
-        if (fuzz < 0) line.fail("metal fuzz must be non-negative, got " + line.word(9));
-        mat = std::make_shared<metal>(albedo, fuzz);
-    } else if (kind == "dielectric") {
-        if (!(ior > 0)) line.fail("dielectric ior must be positive, got " + line.word(10));
-        mat = std::make_shared<dielectric>(ior);
-    } else {
-        line.fail("unknown material '" + kind + "' (expected lambertian, metal or dielectric)");
+    return std::make_shared<sphere>(center, radius, parse_material(line, 5));
+}
+
+inline std::shared_ptr<hittable> parse_triangle_line(const scene_line& line) {
+    line.expect_count(16, "triangle ax ay az bx by bz cx cy cz material r g b fuzz ior");
+    point3 a = line.vector(1, "triangle vertex"), b = line.vector(4, "triangle vertex"), c = line.vector(7, "triangle vertex");
+    if (cross(b - a, c - a).length_squared() == 0) line.fail("triangle has zero area");
+    return std::make_shared<triangle>(a, b, c, parse_material(line, 10));
+}
+
+// `mesh file.obj material r g b fuzz ior`; the OBJ path is relative to the scene file.
+inline std::shared_ptr<hittable> parse_mesh_line(const scene_line& line, const std::string& scene_name) {
+    line.expect_count(8, "mesh file.obj material r g b fuzz ior");
+    std::filesystem::path obj(line.word(1));
+    if (obj.is_relative()) obj = std::filesystem::path(scene_name).parent_path() / obj;
+    std::shared_ptr<material> mat = parse_material(line, 2);
+    try {
+        return load_obj(obj.string(), std::move(mat));
+    } catch (const scene_error& e) {
+        line.fail(e.what());
     }
-    return std::make_shared<sphere>(center, radius, mat);
 }
 
 } // namespace detail
@@ -174,7 +204,9 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
         detail::scene_line line(name, number, std::move(tokens));
         if (line.word(0) == "camera") detail::parse_camera_line(line, scene.cam);
         else if (line.word(0) == "sphere") scene.world.add(detail::parse_sphere_line(line));
-        else line.fail("unknown directive '" + line.word(0) + "' (expected camera or sphere)");
+        else if (line.word(0) == "triangle") scene.world.add(detail::parse_triangle_line(line));
+        else if (line.word(0) == "mesh") scene.world.add(detail::parse_mesh_line(line, name));
+        else line.fail("unknown directive '" + line.word(0) + "' (expected camera, sphere, triangle or mesh)");
     }
     if (in.bad()) throw scene_error(name + ": read error");
     return scene;

@@ -4,7 +4,9 @@
 // widest the machine has) and to plain scalar code elsewhere, with the same source.
 //
 //   floatv a = floatv::load(ptr), b(2.0f);    a + b, a * b, a / b, sqrt(a), min(a, b)
-//   maskv m = a < b;                          select(m, a, b), any(m), m & n
+//   maskv m = a < b;                          select(m, a, b), any(m), m & n, m | n
+//   bits(m)                                   one bit per lane, lane 0 in bit 0
+//   lane_index()                              0, 1, 2, ... width-1
 //
 // Lane counts are a compile-time property: floatv::width.
 
@@ -46,8 +48,12 @@ inline maskv operator<(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v
 inline maskv operator>(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GT_OQ)}; }
 inline maskv operator>=(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
 inline maskv operator&(maskv a, maskv b) { return {static_cast<__mmask16>(a.m & b.m)}; }
+inline maskv operator<=(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ)}; }
+inline maskv operator==(floatv a, floatv b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
+inline maskv operator|(maskv a, maskv b) { return {static_cast<__mmask16>(a.m | b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
 inline bool any(maskv m) { return m.m != 0; }
+inline unsigned bits(maskv m) { return m.m; }
 
 #elif defined(__AVX__)
 
@@ -74,8 +80,12 @@ inline maskv operator<(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CM
 inline maskv operator>(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
 inline maskv operator>=(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
 inline maskv operator&(maskv a, maskv b) { return {_mm256_and_ps(a.m, b.m)}; }
+inline maskv operator<=(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
+inline maskv operator==(floatv a, floatv b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)}; }
+inline maskv operator|(maskv a, maskv b) { return {_mm256_or_ps(a.m, b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm256_blendv_ps(b.v, a.v, m.m); }
 inline bool any(maskv m) { return _mm256_movemask_ps(m.m) != 0; }
+inline unsigned bits(maskv m) { return static_cast<unsigned>(_mm256_movemask_ps(m.m)); }
 
 #elif defined(RTWEEKEND_SSE2)
 
@@ -102,8 +112,12 @@ inline maskv operator<(floatv a, floatv b) { return {_mm_cmplt_ps(a.v, b.v)}; }
 inline maskv operator>(floatv a, floatv b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
 inline maskv operator>=(floatv a, floatv b) { return {_mm_cmpge_ps(a.v, b.v)}; }
 inline maskv operator&(maskv a, maskv b) { return {_mm_and_ps(a.m, b.m)}; }
+inline maskv operator<=(floatv a, floatv b) { return {_mm_cmple_ps(a.v, b.v)}; }
+inline maskv operator==(floatv a, floatv b) { return {_mm_cmpeq_ps(a.v, b.v)}; }
+inline maskv operator|(maskv a, maskv b) { return {_mm_or_ps(a.m, b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm_or_ps(_mm_and_ps(m.m, a.v), _mm_andnot_ps(m.m, b.v)); }
 inline bool any(maskv m) { return _mm_movemask_ps(m.m) != 0; }
+inline unsigned bits(maskv m) { return static_cast<unsigned>(_mm_movemask_ps(m.m)); }
 
 #else
 
@@ -129,9 +143,19 @@ inline maskv operator<(floatv a, floatv b) { return {a.v < b.v}; }
 inline maskv operator>(floatv a, floatv b) { return {a.v > b.v}; }
 inline maskv operator>=(floatv a, floatv b) { return {a.v >= b.v}; }
 inline maskv operator&(maskv a, maskv b) { return {a.m && b.m}; }
+inline maskv operator<=(floatv a, floatv b) { return {a.v <= b.v}; }
+inline maskv operator==(floatv a, floatv b) { return {a.v == b.v}; }
+inline maskv operator|(maskv a, maskv b) { return {a.m || b.m}; }
 inline floatv select(maskv m, floatv a, floatv b) { return m.m ? a : b; }
 inline bool any(maskv m) { return m.m; }
+inline unsigned bits(maskv m) { return m.m ? 1u : 0u; }
 
 #endif
+
+// The lanes' own numbers, 0 .. width-1: for "lane < count" masks and for remembering which lane won.
+inline floatv lane_index() {
+    alignas(64) static constexpr float lanes[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    return floatv::load(lanes);
+}
 
 } // namespace rt

@@ -94,10 +94,15 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
 
     CHECK(s.sphere_count == 5);
-    // Arrays padded to whole blocks of 16, padding spheres unhittable (negative squared radius).
-    CHECK(s.sphere_x.size() == 16);
-    CHECK(s.sphere_r2.size() == 16);
-    for (size_t i = 5; i < 16; ++i) CHECK(s.sphere_r2[i] < 0);
+    // Five spheres need no BVH: the root is one leaf holding all of them, in input order.
+    CHECK(s.bvh.nodes.empty());
+    CHECK(bvh_ref::is_leaf(s.bvh.root));
+    CHECK(bvh_ref::count(s.bvh.root) == 5);
+    // Arrays padded by one SIMD width (leaf loads read that far), padding spheres unhittable
+    // (negative squared radius).
+    CHECK(s.sphere_x.size() == 5 + floatv::width);
+    CHECK(s.sphere_r2.size() == 5 + floatv::width);
+    for (size_t i = 5; i < s.sphere_r2.size(); ++i) CHECK(s.sphere_r2[i] < 0);
     CHECK(s.custom_objects.empty());
     CHECK_FALSE(s.has_custom_materials);
 
@@ -116,12 +121,13 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     CHECK(gl.kind == material_kind::dielectric);
     CHECK(gl.refraction_index == 1.33f);
 
-    // 17 spheres need two blocks.
+    // 17 spheres in a row get a BVH (more than one leaf's worth).
     hittable_list many;
     for (int i = 0; i < 17; ++i) many.add(std::make_shared<sphere>(point3(i, 0, -5), 0.1, shared));
     compiled_scene m = compile_scene(many, point3(0, 0, 0));
     CHECK(m.sphere_count == 17);
-    CHECK(m.sphere_x.size() == 32);
+    CHECK(m.sphere_x.size() == 17 + floatv::width);
+    CHECK_FALSE(m.bvh.nodes.empty());
 
     // Empty world: nothing to hit.
     hittable_list none;

@@ -1,0 +1,388 @@
+// bench: how fast the renderer is. Never a test: machines are shared and noisy, so every figure
+// is the median of several runs, and comparisons are made side by side in one run.
+//
+//   bench --scene FILE [--width N] [--spp N] [--depth N] [--threads N] [--runs N]
+//       renders the scene file; prints rays, seconds and Mrays/s (median), BVH size, peak memory
+//   bench --mesh FILE.obj --rays FILE.rays [--rays ...] [--threads N] [--runs N]
+//       traces ray files (format: README, "Ray files") against the mesh; one line per file:
+//       rays N hits H sum_t S mrays_per_s X          (closest-hit files)
+//       rays N occluded H mrays_per_s X              (any-hit files)
+//   bench --mesh FILE.obj --make-rays PREFIX [--size N]
+//       writes PREFIX.primary.rays, PREFIX.diffuse.rays, PREFIX.shadow.rays: the standard mesh
+//       workload (ray_workload.h), traced with this renderer
+//   bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]
+//       time per ray for 1k, 10k, 100k and 1M random spheres, and for the mesh (default: the
+//       small bunny) and its Loop subdivisions up to N levels; one table
+
+#include "app_options.h"
+#include "loop_subdivision.h"
+#include "ray_workload.h"
+
+#include <rtweekend/mesh.h>
+#include <rtweekend/ray_file.h>
+#include <rtweekend/render.h>
+#include <rtweekend/rng.h>
+#include <rtweekend/scene.h>
+#include <rtweekend/scene_io.h>
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+const app::description bench_description{"bench", "Measures rendering and ray tracing speed.", "", 0, 0};
+
+[[noreturn]] void usage(const std::string& message) {
+    std::fprintf(stderr, "bench: error: %s\n", message.c_str());
+    std::fprintf(stderr,
+                 "usage: bench --scene FILE [--width N] [--spp N] [--depth N] [--threads N] [--runs N]\n"
+                 "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
+                 "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
+                 "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n");
+    std::exit(2);
+}
+
+struct bench_options {
+    std::string scene, mesh, make_rays;
+    std::vector<std::string> rays;
+    bool scaling = false;
+    int runs = 5, threads = 1, size = 1024, levels = 4;
+    std::optional<int> width, spp, depth;
+    bool threads_given = false;
+};
+
+bench_options parse(int argc, char** argv) {
+    bench_options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        auto next = [&]() -> std::string {
+            if (i + 1 >= argc) usage(arg + " needs a value");
+            return argv[++i];
+        };
+        auto integer = [&](long long min, long long max) {
+            return int(app::parse_integer(bench_description, arg, next(), min, max));
+        };
+        if (arg == "--help" || arg == "-h") {
+            std::printf("usage: bench --scene FILE [--width N] [--spp N] [--depth N] [--threads N] [--runs N]\n"
+                        "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
+                        "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
+                        "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
+                        "Medians of --runs runs (default 5); one thread unless --threads (0 = all cores).\n");
+            std::exit(0);
+        } else if (arg == "--scene") o.scene = next();
+        else if (arg == "--mesh") o.mesh = next();
+        else if (arg == "--rays") o.rays.push_back(next());
+        else if (arg == "--make-rays") o.make_rays = next();
+        else if (arg == "--scaling") o.scaling = true;
+        else if (arg == "--runs") o.runs = integer(1, 1000);
+        else if (arg == "--threads") {
+            o.threads = integer(0, 1024);
+            o.threads_given = true;
+        } else if (arg == "--size") o.size = integer(1, 1 << 14);
+        else if (arg == "--levels") o.levels = integer(0, 6);
+        else if (arg == "--width") o.width = integer(1, 1 << 16);
+        else if (arg == "--spp") o.spp = integer(1, 1 << 24);
+        else if (arg == "--depth") o.depth = integer(1, 1 << 16);
+        else usage("unknown option '" + arg + "'");
+    }
+    int modes = !o.scene.empty() + (!o.rays.empty() || !o.make_rays.empty()) + o.scaling;
+    if (modes != 1) usage("give exactly one of --scene, --mesh with --rays or --make-rays, or --scaling");
+    if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
+    if (!o.rays.empty() && !o.make_rays.empty()) usage("--rays and --make-rays are separate runs");
+    if (o.threads == 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    return o;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double peak_memory_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0; // Linux reports kibibytes
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// --- one scene file ---------------------------------------------------------------------------
+
+void bench_scene(const bench_options& o) {
+    rt::scene_description s = rt::load_scene(o.scene);
+    rt::camera& cam = s.cam;
+    if (o.width) {
+        cam.image_width = *o.width;
+        cam.image_height = 0;
+    }
+    if (o.spp) cam.samples_per_pixel = *o.spp;
+    if (o.depth) cam.max_depth = *o.depth;
+    cam.threads = o.threads;
+    cam.quiet = true;
+
+    auto compile_start = std::chrono::steady_clock::now();
+    rt::compiled_scene compiled = rt::compile_scene(s.world, cam.lookfrom);
+    double compile_s = seconds_since(compile_start);
+    const rt::bvh_stats& bs = compiled.bvh.stats;
+    std::printf("scene %s: %zu spheres, %zu triangles; BVH built in %.2f ms (scene compiled in %.2f ms): "
+                "%zu nodes, %zu leaves, depth %d, %zu bytes of geometry and BVH\n",
+                o.scene.c_str(), compiled.sphere_count, compiled.triangle_count, bs.build_ms, compile_s * 1e3, bs.nodes,
+                bs.leaves, bs.depth, compiled.geometry_bytes());
+
+    std::vector<double> seconds, mrays;
+    uint64_t rays = 0;
+    for (int run = 0; run < o.runs; ++run) {
+        rt::render_result r = rt::render(cam, s.world);
+        seconds.push_back(r.stats.seconds);
+        mrays.push_back(r.stats.mrays_per_second());
+        rays = r.stats.rays;
+        std::fprintf(stderr, "bench: run %d/%d: %.3f s, %.2f Mrays/s\n", run + 1, o.runs, r.stats.seconds,
+                     r.stats.mrays_per_second());
+    }
+    std::printf("%dx%d, %d spp, depth %d, %d thread%s: rays %llu seconds %.3f mrays_per_s %.2f (median of %d) "
+                "peak_memory_mib %.1f\n",
+                cam.frame().width, cam.frame().height, cam.samples_per_pixel, cam.max_depth, o.threads,
+                o.threads == 1 ? "" : "s", static_cast<unsigned long long>(rays), median(seconds), median(mrays), o.runs,
+                peak_memory_mib());
+}
+
+// --- ray files against a mesh -------------------------------------------------------------------
+
+struct traced {
+    uint64_t hits = 0;
+    double sum_t = 0;
+    double seconds = 0;
+};
+
+// Traces every ray of the batch on `threads` threads. Rays are taken in chunks; hits and sum_t
+// are added chunk by chunk in order, so the checksums do not depend on the thread count.
+traced trace_batch(const rt::compiled_scene& scene, const rt::ray_batch& batch, int threads) {
+    constexpr size_t chunk = 4096;
+    const size_t n = batch.rays.size(), chunks = (n + chunk - 1) / chunk;
+    std::vector<uint64_t> chunk_hits(chunks);
+    std::vector<double> chunk_sum(chunks);
+    std::atomic<size_t> next{0};
+    const bool any = batch.kind == rt::ray_query::any;
+    auto start = std::chrono::steady_clock::now();
+    auto worker = [&] {
+        rt::surface_hit hit;
+        for (size_t c = next++; c < chunks; c = next++) {
+            uint64_t hits = 0;
+            double sum = 0;
+            for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) {
+                const rt::ray3f& r = batch.rays[i];
+                if (any) {
+                    hits += scene.occluded(r);
+                } else if (scene.intersect(r, hit)) {
+                    ++hits;
+                    sum += hit.t;
+                }
+            }
+            chunk_hits[c] = hits;
+            chunk_sum[c] = sum;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    traced out;
+    out.seconds = seconds_since(start);
+    for (size_t c = 0; c < chunks; ++c) {
+        out.hits += chunk_hits[c];
+        out.sum_t += chunk_sum[c];
+    }
+    return out;
+}
+
+// The mesh as the only object of a world, compiled about the world origin (ray files are in
+// the mesh's own coordinates).
+struct compiled_mesh {
+    rt::hittable_list world;
+    rt::compiled_scene scene;
+    size_t triangles = 0;
+    double load_ms = 0;
+};
+
+compiled_mesh compile_mesh(std::shared_ptr<rt::triangle_mesh> mesh) {
+    compiled_mesh m;
+    m.triangles = mesh->triangle_count();
+    m.world.add(std::move(mesh));
+    m.scene = rt::compile_scene(m.world, rt::point3(0, 0, 0));
+    return m;
+}
+
+void print_mesh_summary(const std::string& name, const compiled_mesh& m) {
+    const rt::bvh_stats& bs = m.scene.bvh.stats;
+    std::printf("mesh %s: %zu triangles (%zu degenerate left out), loaded in %.0f ms; BVH built in %.0f ms: %zu nodes, "
+                "%zu leaves, depth %d; bytes_per_triangle %.1f (BVH %.1f + triangles %.1f)\n",
+                name.c_str(), m.triangles, m.scene.degenerate_triangles, m.load_ms, bs.build_ms, bs.nodes, bs.leaves,
+                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.triangle_count),
+                double(bs.bytes()) / double(m.scene.triangle_count),
+                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.triangle_count));
+}
+
+compiled_mesh load_and_compile(const std::string& path) {
+    auto start = std::chrono::steady_clock::now();
+    auto mesh = rt::load_obj(path, std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5)));
+    double load_ms = seconds_since(start) * 1e3;
+    compiled_mesh m = compile_mesh(std::move(mesh));
+    m.load_ms = load_ms;
+    return m;
+}
+
+void bench_rays(const bench_options& o) {
+    compiled_mesh m = load_and_compile(o.mesh);
+    print_mesh_summary(o.mesh, m);
+    for (const std::string& file : o.rays) {
+        rt::ray_batch batch = rt::read_rays(file);
+        std::vector<double> rates;
+        traced t;
+        for (int run = 0; run < o.runs; ++run) {
+            t = trace_batch(m.scene, batch, o.threads);
+            rates.push_back(double(batch.rays.size()) / t.seconds * 1e-6);
+        }
+        if (batch.kind == rt::ray_query::any)
+            std::printf("%s: rays %zu occluded %llu mrays_per_s %.2f\n", file.c_str(), batch.rays.size(),
+                        static_cast<unsigned long long>(t.hits), median(rates));
+        else
+            std::printf("%s: rays %zu hits %llu sum_t %.9g mrays_per_s %.2f\n", file.c_str(), batch.rays.size(),
+                        static_cast<unsigned long long>(t.hits), t.sum_t, median(rates));
+    }
+    std::printf("peak_memory_mib %.1f (%d thread%s, median of %d runs)\n", peak_memory_mib(), o.threads,
+                o.threads == 1 ? "" : "s", o.runs);
+}
+
+// The closest-hit function the standard workload needs: t and the geometric normal.
+auto closest_hit(const rt::compiled_scene& scene) {
+    return [&scene](const rt::ray3f& r, float& t, rt::vec3f& normal) {
+        rt::surface_hit hit;
+        if (!scene.intersect(r, hit)) return false;
+        t = hit.t;
+        normal = hit.normal;
+        return true;
+    };
+}
+
+// The mesh's bounding box, in float.
+void mesh_bounds(const rt::compiled_scene& s, rt::vec3f& lo, rt::vec3f& hi) {
+    rt::box3f box;
+    for (size_t i = 0; i < s.triangle_count; ++i)
+        for (int v = 0; v < 3; ++v)
+            box.grow(rt::vec3f{s.triangle_vertex[size_t(3 * v)][i], s.triangle_vertex[size_t(3 * v + 1)][i],
+                               s.triangle_vertex[size_t(3 * v + 2)][i]});
+    lo = box.lo;
+    hi = box.hi;
+}
+
+void bench_make_rays(const bench_options& o) {
+    compiled_mesh m = load_and_compile(o.mesh);
+    print_mesh_summary(o.mesh, m);
+    rt::vec3f lo, hi;
+    mesh_bounds(m.scene, lo, hi);
+    app::workload w = app::make_standard_workload(lo, hi, closest_hit(m.scene), o.size);
+    const std::pair<const char*, const rt::ray_batch*> files[] = {
+        {".primary.rays", &w.primary}, {".diffuse.rays", &w.diffuse}, {".shadow.rays", &w.shadow}};
+    for (const auto& [suffix, batch] : files) {
+        std::string path = o.make_rays + suffix;
+        rt::write_rays(path, *batch);
+        std::printf("wrote %s: %zu %s rays\n", path.c_str(), batch->rays.size(), rt::ray_query_name(batch->kind));
+    }
+}
+
+// --- scaling ----------------------------------------------------------------------------------
+
+struct scaling_row {
+    std::string what;
+    size_t primitives;
+    double build_ms, bytes_per_primitive, ns_primary, ns_diffuse, ns_shadow;
+};
+
+double ns_per_ray(const rt::compiled_scene& scene, const rt::ray_batch& batch, int runs) {
+    std::vector<double> ns;
+    for (int run = 0; run < runs; ++run) ns.push_back(trace_batch(scene, batch, 1).seconds / double(batch.rays.size()) * 1e9);
+    return median(ns);
+}
+
+scaling_row measure(const std::string& what, const rt::compiled_scene& scene, size_t primitives, const bench_options& o) {
+    rt::vec3f lo, hi;
+    rt::box3f box;
+    // Bounds of everything: spheres and triangles.
+    for (size_t i = 0; i < scene.sphere_count; ++i) {
+        rt::vec3f c{scene.sphere_x[i], scene.sphere_y[i], scene.sphere_z[i]};
+        rt::vec3f r{scene.sphere_r[i], scene.sphere_r[i], scene.sphere_r[i]};
+        box.grow(c - r);
+        box.grow(c + r);
+    }
+    if (scene.triangle_count > 0) {
+        mesh_bounds(scene, lo, hi);
+        box.grow(lo);
+        box.grow(hi);
+    }
+    app::workload w = app::make_standard_workload(box.lo, box.hi, closest_hit(scene), o.size);
+    scaling_row row{what, primitives, scene.bvh.stats.build_ms, double(scene.geometry_bytes()) / double(primitives), 0, 0, 0};
+    row.ns_primary = ns_per_ray(scene, w.primary, o.runs);
+    row.ns_diffuse = ns_per_ray(scene, w.diffuse, o.runs);
+    row.ns_shadow = ns_per_ray(scene, w.shadow, o.runs);
+    std::fprintf(stderr, "bench: %s done\n", what.c_str());
+    return row;
+}
+
+void bench_scaling(const bench_options& o) {
+    std::vector<scaling_row> rows;
+    // Random spheres in the unit cube, the radius shrinking as n^(-1/3) so that they cover the
+    // same fraction of the volume (about 5 %) at every count.
+    for (size_t n : {size_t(1000), size_t(10000), size_t(100000), size_t(1000000)}) {
+        rt::hittable_list world;
+        auto mat = std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5));
+        rt::pcg32 rng = rt::sample_rng(2026, n, 0);
+        double radius = std::cbrt(0.05 * 3 / (4 * rt::pi * double(n)));
+        for (size_t i = 0; i < n; ++i)
+            world.add(std::make_shared<rt::sphere>(rt::point3(rng.next_float(), rng.next_float(), rng.next_float()),
+                                                   radius * (0.5 + rng.next_float()), mat));
+        rt::compiled_scene scene = rt::compile_scene(world, rt::point3(0, 0, 0));
+        rows.push_back(measure("random spheres", scene, n, o));
+    }
+    // The mesh and its Loop subdivisions (4x the triangles per level).
+    std::string mesh_path = o.mesh.empty() ? std::string(RTWEEKEND_DATA_DIR) + "/meshes/bunny_npm.obj" : o.mesh;
+    app::tri_mesh base = app::read_obj(mesh_path);
+    for (int level = 0; level <= o.levels; ++level) {
+        app::tri_mesh sub = app::loop_subdivide(base, level);
+        std::vector<rt::point3> positions(sub.positions.begin(), sub.positions.end());
+        auto mesh = std::make_shared<rt::triangle_mesh>(std::move(positions), sub.triangles,
+                                                        std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5)));
+        compiled_mesh m = compile_mesh(mesh);
+        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangle_count, o));
+    }
+
+    std::printf("| primitives | scene | BVH build ms | bytes/primitive | ns/ray primary | ns/ray diffuse | ns/ray shadow |\n");
+    std::printf("|---:|---|---:|---:|---:|---:|---:|\n");
+    for (const scaling_row& r : rows)
+        std::printf("| %zu | %s | %.1f | %.1f | %.0f | %.0f | %.0f |\n", r.primitives, r.what.c_str(), r.build_ms,
+                    r.bytes_per_primitive, r.ns_primary, r.ns_diffuse, r.ns_shadow);
+    std::printf("(standard workload at %dx%d, one thread, median of %d runs; mesh: %s)\n", o.size, o.size, o.runs,
+                mesh_path.c_str());
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bench_options o = parse(argc, argv);
+    return app::run(bench_description, [&] {
+        if (!o.scene.empty()) bench_scene(o);
+        else if (!o.make_rays.empty()) bench_make_rays(o);
+        else if (!o.rays.empty()) bench_rays(o);
+        else bench_scaling(o);
+    });
+}

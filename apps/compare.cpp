@@ -1,0 +1,121 @@
+// compare: how far an image is from a reference (metrics: rtweekend/metrics.h).
+//
+//   compare render.pfm reference.pfm     linear and 8-bit metrics
+//   compare render.png reference.pfm     8-bit metrics (the PFM is encoded as our writers do)
+//
+// stdout starts with one machine-readable line per comparison,
+//   linear rmse X relmse Y psnr Z bias R G B nonfinite NA NREF
+//   8bit rmse X relmse Y psnr Z bias R G B nonfinite NA NREF
+// then the same figures for a reader. Exit status 1 for a file it cannot use, 2 for bad usage.
+
+#include "app_options.h"
+
+#include <rtweekend/image_read.h>
+#include <rtweekend/metrics.h>
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+const app::description d{"compare", "Compares IMAGE with the reference image REFERENCE and prints error metrics.",
+                         "IMAGE REFERENCE", 2, 2};
+
+void print_usage(std::FILE* to) {
+    std::fprintf(to,
+                 "usage: compare IMAGE REFERENCE [--help]\n"
+                 "%s\n"
+                 "  IMAGE, REFERENCE  PPM (P3 or P6), PFM, PNG or BMP files of the same size\n"
+                 "  --help            show this help\n"
+                 "Two PFM files give linear metrics and 8-bit metrics (both encoded as the writers do,\n"
+                 "gamma 2); if either file is 8-bit, the linear one is encoded and the metrics are 8-bit.\n"
+                 "RMSE and bias are in the images' units (radiance or 8-bit codes); relMSE divides by\n"
+                 "ref^2 + 0.01 on values scaled to white = 1; PSNR's peak is 1 (linear) or 255 (8-bit).\n",
+                 d.summary);
+}
+
+[[noreturn]] void usage_error(const std::string& message) {
+    std::fprintf(stderr, "%s: error: %s\n", d.name, message.c_str());
+    print_usage(stderr);
+    std::exit(2);
+}
+
+std::vector<std::string> parse(int argc, char** argv) {
+    std::vector<std::string> files;
+    bool options_ended = false;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        if (!options_ended && (arg == "--help" || arg == "-h")) {
+            print_usage(stdout);
+            std::exit(0);
+        } else if (!options_ended && arg == "--") {
+            options_ended = true;
+        } else if (!options_ended && arg.size() > 1 && arg[0] == '-') {
+            usage_error("unknown option '" + arg + "'");
+        } else {
+            files.push_back(arg);
+        }
+    }
+    if (files.size() != 2)
+        usage_error(std::string("expected ") + d.operands + " (two file names), got " + std::to_string(files.size()));
+    return files;
+}
+
+std::string size_text(const rt::image& img) { return std::to_string(img.width()) + "x" + std::to_string(img.height()); }
+
+std::string describe(const std::string& path, const rt::loaded_image& img) {
+    return path + " (" + size_text(img.pixels) + " " + img.format +
+           (img.display_encoded ? ", 8-bit display-encoded)" : ", linear)");
+}
+
+void print_machine_line(const char* label, const rt::image_error& e) {
+    std::printf("%s rmse %.6g relmse %.6g psnr %.6g bias %.6g %.6g %.6g nonfinite %zu %zu\n", label, e.rmse, e.rel_mse,
+                e.psnr, e.bias[0], e.bias[1], e.bias[2], e.nonfinite_a, e.nonfinite_ref);
+}
+
+void print_readable_line(const char* label, const rt::image_error& e) {
+    std::printf("  %-8s %-10.4g %-10.4g %-10.4g %+-10.3g %+-10.3g %+-10.3g\n", label, e.rmse, e.rel_mse, e.psnr,
+                e.bias[0], e.bias[1], e.bias[2]);
+}
+
+void print_nonfinite_note(const rt::image_error& e, bool linear) {
+    if (e.nonfinite_a == 0 && e.nonfinite_ref == 0) return;
+    std::printf("  note: NaN/Inf channel values: %zu in the image, %zu in the reference; %s\n", e.nonfinite_a,
+                e.nonfinite_ref,
+                linear ? "left out of the linear metrics"
+                       : "the 8-bit encoding stores NaN as 0 and Inf as 255, as a written file would");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> files = parse(argc, argv);
+    return app::run(d, [&] {
+        rt::loaded_image a = rt::read_image(files[0]);
+        rt::loaded_image ref = rt::read_image(files[1]);
+        if (a.pixels.width() != ref.pixels.width() || a.pixels.height() != ref.pixels.height())
+            throw rt::scene_error("'" + files[0] + "' is " + size_text(a.pixels) + " but the reference '" + files[1] +
+                                  "' is " + size_text(ref.pixels));
+        rt::image_comparison c = rt::compare_loaded(a, ref);
+
+        if (c.linear) print_machine_line("linear", *c.linear);
+        print_machine_line("8bit", c.display);
+
+        std::printf("\nimage:     %s\nreference: %s\n", describe(files[0], a).c_str(), describe(files[1], ref).c_str());
+        std::printf("  %-8s %-10s %-10s %-10s %-10s %-10s %-10s\n", "", "RMSE", "relMSE", "PSNR (dB)", "bias R", "bias G",
+                    "bias B");
+        if (c.linear) print_readable_line("linear", *c.linear);
+        print_readable_line("8-bit", c.display);
+        const char* how = c.linear                                   ? "both encoded as the writers do (gamma 2)"
+                          : a.display_encoded && ref.display_encoded ? "the stored codes"
+                                                                     : "the PFM encoded as the writers do (gamma 2)";
+        std::printf("  (PSNR peak: 1 linear, 255 8-bit; 8-bit compares %s)\n", how);
+        if (c.linear) print_nonfinite_note(*c.linear, true);
+        print_nonfinite_note(c.display, false);
+
+        std::fflush(stdout);
+        if (std::ferror(stdout)) throw rt::scene_error("cannot write the results to standard output");
+    });
+}

@@ -1,0 +1,172 @@
+// The BVH builder (rtweekend/bvh.h): structural invariants checked by walking the tree
+// independently of the traversal: every primitive stored once, leaves of one kind and bounded
+// size, every box containing everything below it.
+
+#include <rtweekend/bvh.h>
+#include <rtweekend/rng.h>
+
+#include <doctest/doctest.h>
+
+#include <vector>
+
+using namespace rt;
+
+namespace {
+
+box3f random_box(pcg32& rng, float spread, float size) {
+    vec3f c{spread * rng.next_float(), spread * rng.next_float(), spread * rng.next_float()};
+    vec3f e{size * rng.next_float(), size * rng.next_float(), size * rng.next_float()};
+    box3f b;
+    b.grow(c - e);
+    b.grow(c + e);
+    return b;
+}
+
+bool contains(const bvh_node8& node, int slot, const box3f& b) {
+    return node.bounds[0][slot] <= b.lo.x && node.bounds[1][slot] <= b.lo.y && node.bounds[2][slot] <= b.lo.z &&
+           node.bounds[3][slot] >= b.hi.x && node.bounds[4][slot] >= b.hi.y && node.bounds[5][slot] >= b.hi.z;
+}
+
+struct checker {
+    const bvh8& bvh;
+    const std::vector<bvh_primitive>& prims; // by type, then index: prims_of[type][index]
+    std::vector<std::vector<const bvh_primitive*>> by_type;
+    std::vector<std::vector<int>> seen;
+    uint32_t max_leaf;
+    int problems = 0;
+
+    checker(const bvh8& b, const std::vector<bvh_primitive>& p, uint32_t max_leaf)
+        : bvh(b), prims(p), by_type(primitive_type_count), seen(primitive_type_count), max_leaf(max_leaf) {
+        for (const auto& q : prims) {
+            auto t = size_t(q.type);
+            if (by_type[t].size() <= q.index) by_type[t].resize(q.index + 1);
+            by_type[t][q.index] = &q;
+        }
+        for (size_t t = 0; t < by_type.size(); ++t) seen[t].assign(by_type[t].size(), 0);
+    }
+
+    // Every primitive under `ref`, checked to lie inside `box` (when given).
+    void walk(uint32_t ref, const bvh_node8* parent, int slot) {
+        if (bvh_ref::is_leaf(ref)) {
+            auto t = size_t(bvh_ref::type(ref));
+            uint32_t first = bvh_ref::first(ref), count = bvh_ref::count(ref);
+            if (count > max_leaf) ++problems;
+            for (uint32_t k = first; k < first + count; ++k) {
+                uint32_t index = bvh.order[t].at(k);
+                ++seen[t].at(index);
+                if (parent && !contains(*parent, slot, by_type[t][index]->bounds)) ++problems;
+            }
+            return;
+        }
+        const bvh_node8& node = bvh.nodes.at(ref);
+        for (int i = 0; i < 8; ++i) {
+            if (node.child[i] == bvh_ref::empty) continue;
+            if (parent) { // the child's box lies inside the parent's slot box
+                box3f child{{node.bounds[0][i], node.bounds[1][i], node.bounds[2][i]},
+                            {node.bounds[3][i], node.bounds[4][i], node.bounds[5][i]}};
+                if (!contains(*parent, slot, child)) ++problems;
+            }
+            walk(node.child[i], &node, i);
+        }
+    }
+};
+
+} // namespace
+
+TEST_CASE("bvh: every primitive exactly once, leaves bounded and of one kind, boxes nest") {
+    pcg32 rng = sample_rng(5, 0, 0);
+    std::vector<bvh_primitive> prims;
+    uint32_t spheres = 0, triangles = 0;
+    for (int i = 0; i < 5000; ++i) {
+        bool tri = rng.next_float() < 0.7f;
+        prims.push_back({random_box(rng, 100, tri ? 1.0f : 3.0f), tri ? primitive_type::triangle : primitive_type::sphere,
+                         tri ? triangles++ : spheres++});
+    }
+    bvh_build_options options;
+    bvh8 bvh = build_bvh8(prims, options);
+    CHECK(bvh.stats.primitives == 5000);
+    CHECK(bvh.order[0].size() == spheres);
+    CHECK(bvh.order[1].size() == triangles);
+    REQUIRE_FALSE(bvh_ref::is_leaf(bvh.root));
+    CHECK(bvh.stats.nodes == bvh.nodes.size());
+    CHECK(bvh.stats.bytes() == bvh.nodes.size() * sizeof(bvh_node8));
+    // An 8-wide tree over 5000 primitives in leaves of <= 16: at least log8(5000 / 16) ~ 2.8 deep.
+    CHECK(bvh.stats.depth >= 3);
+
+    checker c(bvh, prims, options.max_leaf_size);
+    c.walk(bvh.root, nullptr, 0);
+    CHECK(c.problems == 0);
+    for (size_t t = 0; t < 2; ++t)
+        for (int n : c.seen[t]) CHECK(n == 1);
+
+    // Every node has at least two children (one would be a wasted visit), and on average more
+    // than three: a binary tree would have exactly two.
+    size_t children = 0;
+    for (const auto& node : bvh.nodes) {
+        size_t n = 0;
+        for (uint32_t ch : node.child) n += ch != bvh_ref::empty;
+        CHECK(n >= 2);
+        children += n;
+    }
+    CHECK(double(children) / double(bvh.nodes.size()) > 3.0);
+}
+
+TEST_CASE("bvh: small and degenerate inputs") {
+    // Nothing: an empty root.
+    bvh8 none = build_bvh8({});
+    CHECK(none.root == bvh_ref::empty);
+    CHECK(none.nodes.empty());
+
+    // Three spheres: no nodes, the root is one leaf (a tiny scene needs no hierarchy).
+    std::vector<bvh_primitive> three;
+    pcg32 rng = sample_rng(9, 0, 0);
+    for (uint32_t i = 0; i < 3; ++i) three.push_back({random_box(rng, 10, 1), primitive_type::sphere, i});
+    bvh8 small = build_bvh8(three);
+    CHECK(small.nodes.empty());
+    REQUIRE(bvh_ref::is_leaf(small.root));
+    CHECK(bvh_ref::count(small.root) == 3);
+    CHECK(bvh_ref::first(small.root) == 0);
+
+    // Two kinds in a tiny scene: split by kind, since a leaf holds one kind.
+    std::vector<bvh_primitive> mixed = three;
+    mixed.push_back({random_box(rng, 10, 1), primitive_type::triangle, 0});
+    bvh8 m = build_bvh8(mixed);
+    REQUIRE_FALSE(bvh_ref::is_leaf(m.root));
+    checker cm(m, mixed, bvh_build_options{}.max_leaf_size);
+    cm.walk(m.root, nullptr, 0);
+    CHECK(cm.problems == 0);
+
+    // 10000 identical boxes: no plane separates them; the build must still finish, with
+    // bounded leaves and a bounded depth (object-median splits).
+    std::vector<bvh_primitive> same;
+    box3f b = random_box(rng, 1, 1);
+    for (uint32_t i = 0; i < 10000; ++i) same.push_back({b, primitive_type::triangle, i});
+    bvh8 s = build_bvh8(same);
+    checker cs(s, same, bvh_build_options{}.max_leaf_size);
+    cs.walk(s.root, nullptr, 0);
+    CHECK(cs.problems == 0);
+    for (int n : cs.seen[1]) CHECK(n == 1);
+    CHECK(s.stats.depth < 96);
+
+    // Leaf size is honoured, up to the encoding's limit of 16.
+    bvh_build_options big;
+    big.max_leaf_size = 64;
+    big.primitive_cost = 0.001f; // leaves are nearly free: the builder wants them as big as allowed
+    bvh8 l = build_bvh8(same, big);
+    checker cl(l, same, bvh_ref::max_leaf_size);
+    cl.walk(l.root, nullptr, 0);
+    CHECK(cl.problems == 0);
+}
+
+TEST_CASE("bvh: leaf references round-trip their fields") {
+    uint32_t ref = bvh_ref::make_leaf(primitive_type::triangle, 12345678, 16);
+    CHECK(bvh_ref::is_leaf(ref));
+    CHECK(bvh_ref::type(ref) == primitive_type::triangle);
+    CHECK(bvh_ref::first(ref) == 12345678u);
+    CHECK(bvh_ref::count(ref) == 16u);
+    ref = bvh_ref::make_leaf(primitive_type::sphere, bvh_ref::max_first, 1);
+    CHECK(bvh_ref::type(ref) == primitive_type::sphere);
+    CHECK(bvh_ref::first(ref) == bvh_ref::max_first);
+    CHECK(bvh_ref::count(ref) == 1u);
+    CHECK_FALSE(bvh_ref::is_leaf(42));
+}
