@@ -1,6 +1,6 @@
 #pragma once
 // The command line every app shares:
-//   --width N  --spp N  --depth N  --threads N  --seed N  -o FILE  --quiet  --help
+//   --width N  --spp N  --depth N  --threads N  --seed N  --adaptive E  -o FILE  --quiet  --help
 // and the way every app ends: the image to FILE (format by extension) or a P3 PPM on stdout,
 // and one "app: error: ..." line with exit status 1 for bad input, 2 for bad usage.
 
@@ -9,6 +9,7 @@
 #include <rtweekend/scene_error.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +23,7 @@ namespace app {
 
 struct options {
     std::optional<int> width, spp, depth, threads;
+    std::optional<double> adaptive;
     std::optional<uint64_t> seed;
     std::string output; // empty: PPM on stdout
     bool quiet = false;
@@ -36,6 +38,7 @@ struct options {
         if (spp) cam.samples_per_pixel = *spp;
         if (depth) cam.max_depth = *depth;
         if (threads) cam.threads = *threads;
+        if (adaptive) cam.adaptive_error = *adaptive;
         if (seed) cam.seed = *seed;
         cam.quiet = quiet;
     }
@@ -50,13 +53,15 @@ struct description {
 
 inline void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
-                 "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [-o FILE] [--quiet]\n"
+                 "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E] [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
                  "  --depth N    maximum rays per path (the book's max_depth)\n"
                  "  --threads N  worker threads (0 = all cores)\n"
                  "  --seed N     random seed (same seed, same image)\n"
+                 "  --adaptive E stop a pixel's samples once its 95%% interval is within E of its value\n"
+                 "               (relative; --spp is then the most a pixel takes; 0 = off)\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -76,6 +81,18 @@ inline long long parse_integer(const description& d, const std::string& flag, co
     long long v = std::strtoll(text.c_str(), &end, 10);
     if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE)
         usage_error(d, flag + " needs an integer, got '" + text + "'");
+    if (v < min || v > max)
+        usage_error(d, flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
+    return v;
+}
+
+inline double parse_real(const description& d, const std::string& flag, const std::string& text, double min,
+                         double max) {
+    errno = 0;
+    char* end = nullptr;
+    double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+        usage_error(d, flag + " needs a number, got '" + text + "'");
     if (v < min || v > max)
         usage_error(d, flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
     return v;
@@ -108,6 +125,7 @@ inline options parse(int argc, char** argv, const description& d) {
         else if (arg == "--depth") o.depth = int(parse_integer(d, arg, next(), 1, 1 << 16));
         else if (arg == "--threads") o.threads = int(parse_integer(d, arg, next(), 0, 1024));
         else if (arg == "--seed") o.seed = uint64_t(parse_integer(d, arg, next(), 0, INT64_MAX));
+        else if (arg == "--adaptive") o.adaptive = parse_real(d, arg, next(), 0, 1e6);
         else if (arg == "-o" || arg == "--output") {
             o.output = next();
             if (o.output.empty()) usage_error(d, "-o needs a file name");

@@ -13,12 +13,22 @@
 //   bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]
 //       time per ray for 1k, 10k, 100k and 1M random spheres, and for the mesh (default: the
 //       small bunny) and its Loop subdivisions up to N levels; one table
+//   bench --error REF.pfm --scene FILE [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]
+//         [--book-seconds S --book-rmse8 E]
+//       renders at 1, 2, 4, ... N samples per pixel (and, with --adaptive, with adaptive
+//       sampling at halving error targets), and records wall time, rays and the error against
+//       the reference; writes a CSV and a log-log plot of error against seconds; with the book's
+//       measured time and 8-bit error, prints the equal-time and equal-error comparisons
 
 #include "app_options.h"
 #include "loop_subdivision.h"
 #include "ray_workload.h"
 
+#include "plot_svg.h"
+
+#include <rtweekend/image_read.h>
 #include <rtweekend/mesh.h>
+#include <rtweekend/metrics.h>
 #include <rtweekend/ray_file.h>
 #include <rtweekend/render.h>
 #include <rtweekend/rng.h>
@@ -46,12 +56,17 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "usage: bench --scene FILE [--width N] [--spp N] [--depth N] [--threads N] [--runs N]\n"
                  "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                  "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
-                 "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n");
+                 "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
+                 "       bench --error REF.pfm --scene FILE [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]\n"
+                 "             [--book-seconds S --book-rmse8 E]\n");
     std::exit(2);
 }
 
 struct bench_options {
-    std::string scene, mesh, make_rays;
+    std::string scene, mesh, make_rays, error_ref, csv, plot;
+    int max_spp = 1024;
+    bool adaptive = false;
+    std::optional<double> book_seconds, book_rmse8;
     std::vector<std::string> rays;
     bool scaling = false;
     int runs = 5, threads = 1, size = 1024, levels = 4;
@@ -75,6 +90,8 @@ bench_options parse(int argc, char** argv) {
                         "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                         "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                         "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
+                        "       bench --error REF.pfm --scene FILE [--max-spp N] [--adaptive] [--threads N] [--csv F]\n"
+                        "             [--plot F.svg] [--book-seconds S --book-rmse8 E]\n"
                         "Medians of --runs runs (default 5); one thread unless --threads (0 = all cores).\n");
             std::exit(0);
         } else if (arg == "--scene") o.scene = next();
@@ -82,6 +99,13 @@ bench_options parse(int argc, char** argv) {
         else if (arg == "--rays") o.rays.push_back(next());
         else if (arg == "--make-rays") o.make_rays = next();
         else if (arg == "--scaling") o.scaling = true;
+        else if (arg == "--error") o.error_ref = next();
+        else if (arg == "--csv") o.csv = next();
+        else if (arg == "--plot") o.plot = next();
+        else if (arg == "--max-spp") o.max_spp = integer(1, 1 << 20);
+        else if (arg == "--adaptive") o.adaptive = true;
+        else if (arg == "--book-seconds") o.book_seconds = app::parse_real(bench_description, arg, next(), 1e-6, 1e9);
+        else if (arg == "--book-rmse8") o.book_rmse8 = app::parse_real(bench_description, arg, next(), 1e-9, 255);
         else if (arg == "--runs") o.runs = integer(1, 1000);
         else if (arg == "--threads") {
             o.threads = integer(0, 1024);
@@ -93,8 +117,11 @@ bench_options parse(int argc, char** argv) {
         else if (arg == "--depth") o.depth = integer(1, 1 << 16);
         else usage("unknown option '" + arg + "'");
     }
-    int modes = !o.scene.empty() + (!o.rays.empty() || !o.make_rays.empty()) + o.scaling;
-    if (modes != 1) usage("give exactly one of --scene, --mesh with --rays or --make-rays, or --scaling");
+    int modes = (!o.scene.empty() && o.error_ref.empty()) + (!o.rays.empty() || !o.make_rays.empty()) + o.scaling +
+                !o.error_ref.empty();
+    if (modes != 1) usage("give exactly one of --scene, --mesh with --rays or --make-rays, --scaling, or --error");
+    if (!o.error_ref.empty() && o.scene.empty()) usage("--error needs --scene");
+    if (o.book_seconds.has_value() != o.book_rmse8.has_value()) usage("--book-seconds and --book-rmse8 go together");
     if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
     if (!o.rays.empty() && !o.make_rays.empty()) usage("--rays and --make-rays are separate runs");
     if (o.threads == 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -375,12 +402,145 @@ void bench_scaling(const bench_options& o) {
                 mesh_path.c_str());
 }
 
+// --- time against error -------------------------------------------------------------------------
+
+struct error_point {
+    std::string mode; // "uniform" or "adaptive"
+    int spp;          // samples per pixel (the most a pixel takes, for adaptive)
+    double adaptive_error;
+    double seconds;
+    uint64_t rays, samples;
+    rt::image_error linear, display;
+};
+
+// log-log interpolation of y at x along a curve sorted by x; nullopt outside its range.
+std::optional<double> interpolate_loglog(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
+    for (size_t i = 0; i + 1 < xs.size(); ++i) {
+        double x0 = xs[i], x1 = xs[i + 1];
+        if ((x0 <= x && x <= x1) || (x1 <= x && x <= x0)) {
+            if (x0 == x1) return ys[i];
+            double f = std::log(x / x0) / std::log(x1 / x0);
+            return std::exp(std::log(ys[i]) + f * (std::log(ys[i + 1]) - std::log(ys[i])));
+        }
+    }
+    return std::nullopt;
+}
+
+void bench_error(const bench_options& o) {
+    rt::loaded_image ref = rt::read_image(o.error_ref);
+    if (ref.display_encoded)
+        throw rt::scene_error(o.error_ref + ": the reference must be a linear image (PFM), not an 8-bit one");
+    rt::scene_description s = rt::load_scene(o.scene);
+    s.cam.threads = o.threads_given ? o.threads : 0;
+    s.cam.quiet = true;
+    if (o.depth) s.cam.max_depth = *o.depth;
+    if (s.cam.frame().width != ref.pixels.width() || s.cam.frame().height != ref.pixels.height())
+        throw rt::scene_error("the scene renders " + std::to_string(s.cam.frame().width) + "x" +
+                              std::to_string(s.cam.frame().height) + " but the reference is " +
+                              std::to_string(ref.pixels.width()) + "x" + std::to_string(ref.pixels.height()));
+
+    std::vector<error_point> points;
+    auto run = [&](const std::string& mode, int spp, double adaptive_error) {
+        rt::camera cam = s.cam;
+        cam.samples_per_pixel = spp;
+        cam.adaptive_error = adaptive_error;
+        rt::render_result r = rt::render(cam, s.world);
+        error_point p{mode, spp, adaptive_error, r.stats.seconds, r.stats.rays, r.stats.samples,
+                      rt::compare_linear(r.img, ref.pixels), rt::compare_8bit(r.img, ref.pixels)};
+        std::fprintf(stderr, "bench: %s %d spp%s: %.2f s, rmse %.5f (8-bit %.3f)\n", mode.c_str(), spp,
+                     adaptive_error > 0 ? (" error " + std::to_string(adaptive_error)).c_str() : "", p.seconds,
+                     p.linear.rmse, p.display.rmse);
+        points.push_back(p);
+    };
+    for (int spp = 1; spp <= o.max_spp; spp *= 2) run("uniform", spp, 0);
+    if (o.adaptive) // halving error targets; a pixel takes at most max_spp samples
+        for (double e = 0.4; e > 0.01; e /= 2) run("adaptive", o.max_spp, e);
+
+    // The table and the CSV.
+    std::string csv = "mode,spp,adaptive_error,seconds,rays,samples,rmse,relmse,bias_r,bias_g,bias_b,rmse8\n";
+    std::printf("| mode | spp | error target | seconds | Mrays | samples/pixel | RMSE (linear) | relMSE | mean bias (R, G, B) | RMSE (8-bit) |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---|---:|\n");
+    const double pixels = double(ref.pixels.width()) * ref.pixels.height();
+    for (const error_point& p : points) {
+        char line[512];
+        std::snprintf(line, sizeof line, "%s,%d,%g,%.4f,%llu,%llu,%.6g,%.6g,%.3g,%.3g,%.3g,%.5g\n", p.mode.c_str(), p.spp,
+                      p.adaptive_error, p.seconds, static_cast<unsigned long long>(p.rays),
+                      static_cast<unsigned long long>(p.samples), p.linear.rmse, p.linear.rel_mse, p.linear.bias[0],
+                      p.linear.bias[1], p.linear.bias[2], p.display.rmse);
+        csv += line;
+        std::printf("| %s | %d | %s | %.2f | %.1f | %.1f | %.5f | %.2e | %.1e, %.1e, %.1e | %.3f |\n", p.mode.c_str(),
+                    p.spp, p.adaptive_error > 0 ? std::to_string(p.adaptive_error).substr(0, 6).c_str() : "-",
+                    p.seconds, double(p.rays) * 1e-6, double(p.samples) / pixels, p.linear.rmse, p.linear.rel_mse,
+                    p.linear.bias[0], p.linear.bias[1], p.linear.bias[2], p.display.rmse);
+    }
+    if (!o.csv.empty()) rt::detail::write_file_atomically(o.csv, csv);
+
+    // Curves: error against seconds, per mode.
+    auto curve = [&](const std::string& mode, bool display) {
+        std::vector<double> x, y;
+        for (const error_point& p : points)
+            if (p.mode == mode) {
+                x.push_back(p.seconds);
+                y.push_back(display ? p.display.rmse : p.linear.rmse);
+            }
+        return std::make_pair(x, y);
+    };
+    auto [ux, uy] = curve("uniform", false);
+    auto [ax, ay] = curve("adaptive", false);
+
+    // Adaptive against uniform: the time each needs to reach the adaptive points' errors.
+    for (size_t i = 0; i < ax.size(); ++i) {
+        std::vector<double> uy_sorted = uy, ux_sorted = ux; // uniform: error falls as time grows
+        std::optional<double> t_uniform = interpolate_loglog(uy_sorted, ux_sorted, ay[i]);
+        if (t_uniform)
+            std::printf("adaptive reaches RMSE %.5f in %.2f s, uniform in %.2f s: %.2fx sooner\n", ay[i], ax[i],
+                        *t_uniform, *t_uniform / ax[i]);
+    }
+
+    // The book's code: its 8-bit error at its time, against ours.
+    if (o.book_seconds) {
+        auto [dx, dy] = curve("uniform", true);
+        std::optional<double> ours_at_book_time = interpolate_loglog(dx, dy, *o.book_seconds);
+        if (ours_at_book_time)
+            std::printf("equal time (%.2f s): the book's 8-bit RMSE %.3f, ours %.3f: MSE %.1fx lower\n", *o.book_seconds,
+                        *o.book_rmse8, *ours_at_book_time,
+                        (*o.book_rmse8 * *o.book_rmse8) / (*ours_at_book_time * *ours_at_book_time));
+        std::optional<double> our_time = interpolate_loglog(dy, dx, *o.book_rmse8);
+        if (our_time)
+            std::printf("equal error (8-bit RMSE %.3f): the book %.2f s, ours %.3f s: %.1fx faster\n", *o.book_rmse8,
+                        *o.book_seconds, *our_time, *o.book_seconds / *our_time);
+    }
+
+    if (!o.plot.empty()) {
+        // Plotted in the 8-bit metric: the book's code writes 8-bit images only, so that is the
+        // scale on which all three can be placed exactly.
+        auto [udx, udy] = curve("uniform", true);
+        auto [adx, ady] = curve("adaptive", true);
+        std::vector<app::plot_series> series;
+        series.push_back({"rtweekend, uniform sampling", udx, udy});
+        if (!adx.empty()) series.push_back({"rtweekend, adaptive sampling", adx, ady});
+        if (o.book_seconds) {
+            app::plot_series book{"the book's code, 10 spp, 1 thread", {*o.book_seconds}, {*o.book_rmse8}};
+            book.points_only = true;
+            series.push_back(book);
+        }
+        app::plot_options po;
+        int threads = s.cam.threads == 0 ? int(std::max(1u, std::thread::hardware_concurrency())) : s.cam.threads;
+        po.title = "Error against render time, cover scene 400x225 (rtweekend: " + std::to_string(threads) + " thread" +
+                   (threads == 1 ? "" : "s") + ")";
+        po.x_label = "wall-clock seconds";
+        po.y_label = "RMSE against the 6144-spp reference (8-bit, gamma 2)";
+        rt::detail::write_file_atomically(o.plot, app::render_loglog_svg(series, po));
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     bench_options o = parse(argc, argv);
     return app::run(bench_description, [&] {
-        if (!o.scene.empty()) bench_scene(o);
+        if (!o.error_ref.empty()) bench_error(o);
+        else if (!o.scene.empty()) bench_scene(o);
         else if (!o.make_rays.empty()) bench_make_rays(o);
         else if (!o.rays.empty()) bench_rays(o);
         else bench_scaling(o);

@@ -460,6 +460,15 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
                     ref = child[first];
                     continue;
                 }
+                if (AnyHit) {
+                    // Any hit ends the walk, so order matters little: no sorting, the rest wait.
+                    for (; mask; mask &= mask - 1) {
+                        int i = __builtin_ctz(mask);
+                        stack[top++] = {child[i], tnear[i]};
+                    }
+                    ref = child[first];
+                    continue;
+                }
                 int second = __builtin_ctz(mask);
                 mask &= mask - 1;
                 if (mask == 0) { // two, the usual case of several: no loops, the compiler can use cmov

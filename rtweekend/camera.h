@@ -61,6 +61,14 @@ class camera {
     double defocus_angle = 0; // Variation angle of rays through each pixel
     double focus_dist = 10;   // Distance from camera lookfrom point to plane of perfect focus
 
+    // Adaptive sampling, off while adaptive_error is 0. A pixel stops taking samples once the 95 %
+    // confidence interval of its mean luminance is narrower than adaptive_error times the mean
+    // (plus 0.1 in quadrature, so that dark pixels are held to an absolute 0.1 * adaptive_error
+    // rather than chased to zero): checked after adaptive_min_samples and every 8 samples after
+    // that; samples_per_pixel is then the most a pixel takes.
+    double adaptive_error = 0;
+    int adaptive_min_samples = 16;
+
     std::optional<color> background; // Unset: the book's sky gradient; set: this constant colour
     uint64_t seed = 0;               // Random seed: the same seed gives the same image
     int threads = 0;                 // Worker threads; 0 = all cores
@@ -182,6 +190,11 @@ class camera {
                                 background->y() <= float_max && background->z() <= float_max),
                 "background must be finite and non-negative (and at most 3.4e38, float's largest value)");
         require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
+        require(std::isfinite(adaptive_error) && adaptive_error >= 0,
+                "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
+        require(adaptive_min_samples >= 2,
+                "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
+                    std::to_string(adaptive_min_samples));
     }
 };
 

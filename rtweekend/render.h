@@ -48,6 +48,7 @@ struct render_stats {
     int threads = 0;
     uint64_t rays = 0;              // every ray traced: camera rays and scattered rays
     uint64_t samples = 0;           // camera samples taken
+    uint64_t samples_saved = 0;     // by adaptive sampling: width * height * spp - samples
     uint64_t nonfinite_samples = 0; // samples that came out NaN or infinite (dropped)
     double seconds = 0;             // wall time of the render, compile included
 
@@ -183,6 +184,34 @@ inline bool stderr_is_terminal() {
 #endif
 }
 
+// Adaptive sampling's stopping rule for one pixel (see camera::adaptive_error): a running mean
+// and variance of the samples' luminance, and a confidence interval checked every 8 samples.
+class adaptive_stop {
+  public:
+    explicit adaptive_stop(const camera& cam)
+        : error_(cam.adaptive_error), min_samples_(std::max(2, cam.adaptive_min_samples)) {}
+
+    // Records the sample; true when the pixel has enough.
+    bool enough(const vec3f& c, int taken) {
+        if (error_ <= 0) return false;
+        // Rec. 709 luminance: the noise a viewer sees is mostly in brightness.
+        double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+        sum_ += y;
+        sum_squares_ += y * y;
+        if (taken < min_samples_ || (taken - min_samples_) % check_every != 0) return false;
+        double n = taken, mean = sum_ / n;
+        double variance = std::max(0.0, (sum_squares_ - n * mean * mean) / (n - 1));
+        double half_width = 1.96 * std::sqrt(variance / n); // 95 % interval of the mean
+        return half_width <= error_ * std::sqrt(mean * mean + 0.01);
+    }
+
+  private:
+    static constexpr int check_every = 8;
+    double error_;
+    int min_samples_;
+    double sum_ = 0, sum_squares_ = 0;
+};
+
 // Runs `sample(x, y, s, rng, rays)` -> vec3f for every sample of every pixel, in tiles on
 // worker threads, and averages the samples into an image.
 template <class SampleFn>
@@ -198,7 +227,7 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
     result.img = image(w, h);
     std::vector<float>& pixels = result.img.data();
     std::atomic<int> next_tile{0}, tiles_done{0}, percent_shown{0};
-    std::atomic<uint64_t> total_rays{0}, total_nonfinite{0};
+    std::atomic<uint64_t> total_rays{0}, total_nonfinite{0}, total_samples{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     std::atomic<bool> failed{false};
@@ -208,7 +237,7 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
 
     auto worker = [&] {
         scoped_flush_denormals flush; // this thread's float mode, restored when the worker ends
-        uint64_t rays = 0, nonfinite = 0;
+        uint64_t rays = 0, nonfinite = 0, samples = 0;
         try {
             for (int t = next_tile++; t < tile_count && !failed; t = next_tile++) {
                 int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
@@ -217,19 +246,24 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
                     for (int x = x0; x < x1; ++x) {
                         uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
                         double sum[3] = {0, 0, 0};
-                        for (int s = 0; s < spp; ++s) {
-                            pcg32 rng = sample_rng(cam.seed, pixel, uint64_t(s));
-                            vec3f c = sample(x, y, s, rng, rays);
-                            if (!is_finite(c)) {
+                        adaptive_stop stop(cam);
+                        int taken = 0;
+                        while (taken < spp) {
+                            pcg32 rng = sample_rng(cam.seed, pixel, uint64_t(taken));
+                            vec3f c = sample(x, y, taken, rng, rays);
+                            ++taken;
+                            if (!is_finite(c)) { // dropped: it counts as a sample of 0
                                 ++nonfinite;
-                                continue;
+                                c = {0, 0, 0};
                             }
                             sum[0] += c.x;
                             sum[1] += c.y;
                             sum[2] += c.z;
+                            if (stop.enough(c, taken)) break;
                         }
+                        samples += uint64_t(taken);
                         float* out = &pixels[pixel * 3];
-                        for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(sum[k] / spp);
+                        for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(sum[k] / taken);
                     }
                 }
                 int done = ++tiles_done;
@@ -252,6 +286,7 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
         }
         total_rays += rays;
         total_nonfinite += nonfinite;
+        total_samples += samples;
     };
 
     std::vector<std::thread> pool;
@@ -267,7 +302,8 @@ render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&&
     st.samples_per_pixel = spp;
     st.threads = threads;
     st.rays = total_rays;
-    st.samples = uint64_t(w) * uint64_t(h) * uint64_t(spp);
+    st.samples = total_samples;
+    st.samples_saved = uint64_t(w) * uint64_t(h) * uint64_t(spp) - total_samples;
     st.nonfinite_samples = total_nonfinite;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!cam.quiet) std::fprintf(stderr, "%s\n", describe(st).c_str());
@@ -302,7 +338,14 @@ inline std::string describe(const render_stats& s) {
                   s.width, s.height, s.samples_per_pixel, static_cast<unsigned long long>(s.rays), s.seconds,
                   s.mrays_per_second(), s.threads, s.threads == 1 ? "" : "s",
                   static_cast<unsigned long long>(s.nonfinite_samples));
-    return line;
+    std::string text = line;
+    if (s.samples_saved > 0) {
+        std::snprintf(line, sizeof line, ", adaptive: %.1f spp on average, %.1f %% of samples saved",
+                      double(s.samples) / (double(s.width) * s.height),
+                      100.0 * double(s.samples_saved) / double(s.samples + s.samples_saved));
+        text += line;
+    }
+    return text;
 }
 
 inline render_result render(const camera& cam, const hittable& world) {

@@ -8,7 +8,8 @@
 //   camera <key> <values...>     keys: lookfrom x y z | lookat x y z | vup x y z | vfov_deg d |
 //                                defocus_angle_deg d | focus_dist d | aspect_ratio r |
 //                                image_width n | image_height n | samples_per_pixel n |
-//                                max_depth n | background r g b | seed n
+//                                max_depth n | background r g b | seed n |
+//                                adaptive_error e | adaptive_min_samples n
 //   sphere cx cy cz radius <material>
 //   triangle ax ay az bx by bz cx cy cz <material>
 //   mesh file.obj <material>     an OBJ mesh; a relative path is relative to the scene file
@@ -115,6 +116,7 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
     else if (key == "defocus_angle_deg" || key == "defocus_angle") cam.defocus_angle = one("defocus_angle");
     else if (key == "focus_dist") cam.focus_dist = one("focus_dist");
     else if (key == "aspect_ratio") cam.aspect_ratio = one("aspect_ratio");
+    else if (key == "adaptive_error") cam.adaptive_error = one("adaptive_error");
     else if (key == "background") {
         color bg = three("background");
         if (bg.x() < 0 || bg.y() < 0 || bg.z() < 0) line.fail("background must be non-negative");
@@ -126,6 +128,7 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
         else if (key == "samples_per_pixel") cam.samples_per_pixel = line.integer(2, "samples_per_pixel", 1);
         else if (key == "max_depth") cam.max_depth = line.integer(2, "max_depth", 1);
         else if (key == "seed") cam.seed = static_cast<uint64_t>(line.integer(2, "seed", 0));
+        else if (key == "adaptive_min_samples") cam.adaptive_min_samples = line.integer(2, "adaptive_min_samples", 2);
         else line.fail("unknown camera key '" + key + "'");
     }
     if (key == "vfov_deg" || key == "vfov") {
@@ -136,6 +139,8 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
         line.fail("focus_dist must be positive");
     } else if (key == "aspect_ratio" && !(cam.aspect_ratio > 0)) {
         line.fail("aspect_ratio must be positive");
+    } else if (key == "adaptive_error" && !(cam.adaptive_error >= 0)) {
+        line.fail("adaptive_error must be 0 (off) or positive");
     }
 }
 
