@@ -62,10 +62,11 @@ class camera {
     double focus_dist = 10;   // Distance from camera lookfrom point to plane of perfect focus
 
     // Adaptive sampling, off while adaptive_error is 0. A pixel stops taking samples once the 95 %
-    // confidence interval of its mean luminance is narrower than adaptive_error times the mean
-    // (plus 0.1 in quadrature, so that dark pixels are held to an absolute 0.1 * adaptive_error
-    // rather than chased to zero): checked after adaptive_min_samples and every 8 samples after
-    // that; samples_per_pixel is then the most a pixel takes.
+    // confidence interval of its mean luminance is narrower than adaptive_error times its value
+    // (the mean of its first adaptive_min_samples samples, plus 0.1 in quadrature so that dark
+    // pixels are not chased to zero), a target that loosens as sqrt(n / adaptive_min_samples)
+    // (see adaptive_stop in render.h); checked after adaptive_min_samples and every 8 samples
+    // after that. samples_per_pixel is then the most a pixel takes.
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
 

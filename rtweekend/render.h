@@ -202,7 +202,16 @@ class adaptive_stop {
         double n = taken, mean = sum_ / n;
         double variance = std::max(0.0, (sum_squares_ - n * mean * mean) / (n - 1));
         double half_width = 1.96 * std::sqrt(variance / n); // 95 % interval of the mean
-        return half_width <= error_ * std::sqrt(mean * mean + 0.01);
+        // "Relative to the pixel's value" means the value of the first min_samples samples, fixed
+        // from then on: a target that followed the running mean would let a pixel stop sooner
+        // whenever its mean happened to be high, and bias the image upwards.
+        if (taken == min_samples_) scale_ = std::sqrt(mean * mean + 0.01);
+        // The target loosens as sqrt(n / min_samples): a pixel stops once sigma / n, the error
+        // one more sample would remove, is small, which spends samples in proportion to a
+        // pixel's noise (the allocation that minimises the image's total squared error). A fixed
+        // target would spend them in proportion to the noise squared, and pour the budget into
+        // the few noisiest pixels.
+        return half_width <= error_ * scale_ * std::sqrt(n / min_samples_);
     }
 
   private:
@@ -210,6 +219,7 @@ class adaptive_stop {
     double error_;
     int min_samples_;
     double sum_ = 0, sum_squares_ = 0;
+    double scale_ = 1;
 };
 
 // Runs `sample(x, y, s, rng, rays)` -> vec3f for every sample of every pixel, in tiles on
