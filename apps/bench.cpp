@@ -13,7 +13,7 @@
 //   bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]
 //       time per ray for 1k, 10k, 100k and 1M random spheres, and for the mesh (default: the
 //       small bunny) and its Loop subdivisions up to N levels; one table
-//   bench --error REF.pfm --scene FILE [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]
+//   bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]
 //         [--book-seconds S --book-rmse8 E]
 //       renders at 1, 2, 4, ... N samples per pixel (and, with --adaptive, with adaptive
 //       sampling at halving error targets), and records wall time, rays and the error against
@@ -57,7 +57,7 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                  "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                  "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
-                 "       bench --error REF.pfm --scene FILE [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]\n"
+                 "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]\n"
                  "             [--book-seconds S --book-rmse8 E]\n");
     std::exit(2);
 }
@@ -90,7 +90,7 @@ bench_options parse(int argc, char** argv) {
                         "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                         "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                         "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
-                        "       bench --error REF.pfm --scene FILE [--max-spp N] [--adaptive] [--threads N] [--csv F]\n"
+                        "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--csv F]\n"
                         "             [--plot F.svg] [--book-seconds S --book-rmse8 E]\n"
                         "Medians of --runs runs (default 5); one thread unless --threads (0 = all cores).\n");
             std::exit(0);
@@ -434,6 +434,10 @@ void bench_error(const bench_options& o) {
     s.cam.threads = o.threads_given ? o.threads : 0;
     s.cam.quiet = true;
     if (o.depth) s.cam.max_depth = *o.depth;
+    if (o.width) {
+        s.cam.image_width = *o.width;
+        s.cam.image_height = 0;
+    }
     if (s.cam.frame().width != ref.pixels.width() || s.cam.frame().height != ref.pixels.height())
         throw rt::scene_error("the scene renders " + std::to_string(s.cam.frame().width) + "x" +
                               std::to_string(s.cam.frame().height) + " but the reference is " +
