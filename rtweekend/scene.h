@@ -414,7 +414,10 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
             floatv ax = coord(0, kx) - ox - sx * az, ay = coord(0, ky) - oy - sy * az;
             floatv bx = coord(1, kx) - ox - sx * bz, by = coord(1, ky) - oy - sy * bz;
             floatv cx = coord(2, kx) - ox - sx * cz, cy = coord(2, ky) - oy - sy * cz;
-            floatv u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+            // Each product rounded on its own (no fused multiply-add): an edge shared by two
+            // triangles must give exactly opposite values in both (see rounded() in simd.h).
+            floatv u = rounded(cx * by) - rounded(cy * bx), v = rounded(ax * cy) - rounded(ay * cx),
+                   w = rounded(bx * ay) - rounded(by * ax);
             maskv valid = lanes < floatv(float(first + count - i));
             maskv on_edge = valid & ((u == zero) | (v == zero) | (w == zero));
             if (any(on_edge)) {

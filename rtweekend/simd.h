@@ -152,6 +152,22 @@ inline unsigned bits(maskv m) { return m.m ? 1u : 0u; }
 
 #endif
 
+// x, with the compiler forbidden to fuse the operation that produced it into a later one. GCC
+// and Clang contract a * b - c * d into fma(a, b, -(c * d)) when they may (GNU mode does by
+// default); that rounds the two products differently, so the same difference computed with
+// its terms swapped is no longer exactly the negation. The watertight triangle test depends on
+// exactly that symmetry (triangle.h).
+template <class T>
+inline T rounded(T x) {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    __asm__("" : "+v"(x));
+#elif defined(__GNUC__)
+    __asm__("" : "+w"(x));
+#endif
+    return x;
+}
+inline floatv rounded(floatv x) { return floatv(rounded(x.v)); }
+
 // The lanes' own numbers, 0 .. width-1: for "lane < count" masks and for remembering which lane won.
 inline floatv lane_index() {
     alignas(64) static constexpr float lanes[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};

@@ -12,6 +12,7 @@
 // triangle_edge_functions in double when a ray passes exactly through an edge.
 
 #include "hittable.h"
+#include "simd.h"
 
 #include <cmath>
 #include <memory>
@@ -46,9 +47,11 @@ inline void triangle_edge_functions(const sheared_ray<double>& s, const vec3& a,
     double ax = a[s.kx] - s.sx * a[s.kz], ay = a[s.ky] - s.sy * a[s.kz];
     double bx = b[s.kx] - s.sx * b[s.kz], by = b[s.ky] - s.sy * b[s.kz];
     double cx = c[s.kx] - s.sx * c[s.kz], cy = c[s.ky] - s.sy * c[s.kz];
-    u = cx * by - cy * bx;
-    v = ax * cy - ay * cx;
-    w = bx * ay - by * ax;
+    // Each product rounded on its own: a fused multiply-add would break the exact antisymmetry of
+    // a shared edge's function between its two triangles (see rounded() in simd.h).
+    u = rounded(cx * by) - rounded(cy * bx);
+    v = rounded(ax * cy) - rounded(ay * cx);
+    w = rounded(bx * ay) - rounded(by * ax);
 }
 
 // The watertight test in double: true when the ray o + t d meets triangle (a, b, c) with t in the
