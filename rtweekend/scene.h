@@ -437,9 +437,14 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
                     };
                     double du, dv, dw;
                     triangle_edge_functions(shear, vertex(0), vertex(1), vertex(2), du, dv, dw);
-                    lu[k] = float(du);
-                    lv[k] = float(dv);
-                    lw[k] = float(dw);
+                    // Only the functions that were exactly zero: a zero edge is zero in the
+                    // neighbouring triangle too (the float values are exact negations), so both
+                    // redo it, in double; an edge that was not zero keeps its float value, which is
+                    // what the neighbour, not redoing it, also has. Redoing all three would pair a
+                    // double edge with its neighbour's float one, and lose rays near shared vertices.
+                    if (lu[k] == 0) lu[k] = float(du);
+                    if (lv[k] == 0) lv[k] = float(dv);
+                    if (lw[k] == 0) lw[k] = float(dw);
                 }
                 u = floatv::load(lu);
                 v = floatv::load(lv);
