@@ -8,6 +8,7 @@
 #include <rtweekend/image.h>
 #include <rtweekend/scene_error.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -25,6 +26,7 @@ struct options {
     std::optional<int> width, spp, depth, threads;
     std::optional<double> adaptive;
     std::optional<uint64_t> seed;
+    std::optional<bool> cull_back_faces; // --bfc on|off (apps that render XML scenes)
     std::string output; // empty: PPM on stdout
     bool quiet = false;
     std::vector<std::string> positional;
@@ -49,7 +51,18 @@ struct description {
     const char* summary;  // one line: what the app shows
     const char* operands; // positional arguments in the usage line, or ""
     size_t min_positional = 0, max_positional = 0;
+    // Set by apps that render CENG795 XML scenes: they take --bfc, and -o may name a directory.
+    bool xml_scenes = false;
 };
+
+// Whether a scene file is a CENG795 XML scene (by extension), rather than a text scene.
+inline bool is_xml_scene(const std::string& path) {
+    auto dot = path.find_last_of('.');
+    if (dot == std::string::npos) return false;
+    std::string ext = path.substr(dot);
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext == ".xml";
+}
 
 inline void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
@@ -60,12 +73,19 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "  --depth N    maximum rays per path (the book's max_depth)\n"
                  "  --threads N  worker threads (0 = all cores)\n"
                  "  --seed N     random seed (same seed, same image)\n"
-                 "  --adaptive E stop a pixel's samples once its 95%% interval is within E of its value\n"
-                 "               (relative; --spp is then the most a pixel takes; 0 = off)\n"
+                 "  --adaptive E adaptive sampling: a pixel stops once its 95%% interval is narrow enough\n"
+                 "               relative to its value, E the target (--spp is then the most a pixel\n"
+                 "               takes; 0 = off)\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
                  d.name, d.operands[0] ? " " : "", d.operands, d.summary);
+    if (d.xml_scenes)
+        std::fprintf(to,
+                     "For a CENG795 XML scene (.xml), every camera is rendered with the Whitted ray tracer to its\n"
+                     "ImageName (.png or .ppm), only --threads, --quiet and these apply:\n"
+                     "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
+                     "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n");
 }
 
 [[noreturn]] inline void usage_error(const description& d, const std::string& message) {
@@ -126,6 +146,11 @@ inline options parse(int argc, char** argv, const description& d) {
         else if (arg == "--threads") o.threads = int(parse_integer(d, arg, next(), 0, 1024));
         else if (arg == "--seed") o.seed = uint64_t(parse_integer(d, arg, next(), 0, INT64_MAX));
         else if (arg == "--adaptive") o.adaptive = parse_real(d, arg, next(), 0, 1e6);
+        else if (arg == "--bfc" && d.xml_scenes) {
+            std::string v = next();
+            if (v != "on" && v != "off") usage_error(d, "--bfc needs on or off, got '" + v + "'");
+            o.cull_back_faces = v == "on";
+        }
         else if (arg == "-o" || arg == "--output") {
             o.output = next();
             if (o.output.empty()) usage_error(d, "-o needs a file name");
@@ -138,7 +163,12 @@ inline options parse(int argc, char** argv, const description& d) {
     if (o.positional.size() < d.min_positional || o.positional.size() > d.max_positional)
         usage_error(d, d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
                                              : std::string("expected ") + d.operands);
-    if (!o.output.empty()) {
+    const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
+    if (xml && (o.width || o.spp || o.depth || o.adaptive || o.seed))
+        usage_error(d, "--width, --spp, --depth, --adaptive and --seed do not apply to XML scenes "
+                       "(their files set resolution and MaxRecursionDepth)");
+    if (!xml && o.cull_back_faces) usage_error(d, "--bfc applies to XML scenes only");
+    if (!o.output.empty() && !xml) {
         // Refuse a bad output path before rendering, not after.
         try {
             rt::check_output_path(o.output);

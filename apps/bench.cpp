@@ -13,12 +13,15 @@
 //   bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]
 //       time per ray for 1k, 10k, 100k and 1M random spheres, and for the mesh (default: the
 //       small bunny) and its Loop subdivisions up to N levels; one table
-//   bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]
-//         [--book-seconds S --book-rmse8 E]
+//   bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]
+//         [--plot F.svg] [--book-seconds S --book-rmse8 E]
 //       renders at 1, 2, 4, ... N samples per pixel (and, with --adaptive, with adaptive
 //       sampling at halving error targets), and records wall time, rays and the error against
-//       the reference; writes a CSV and a log-log plot of error against seconds; with the book's
-//       measured time and 8-bit error, prints the equal-time and equal-error comparisons
+//       the reference; writes a CSV and a log-log plot of error against seconds; prints the rays
+//       and time uniform sampling needs to reach each adaptive image's error; with the book's
+//       measured time and 8-bit error, prints the equal-time and equal-error comparisons. With
+//       --runs N (default 1 here) every image is rendered N times, interleaved, and timed by the
+//       median
 
 #include "app_options.h"
 #include "loop_subdivision.h"
@@ -57,8 +60,8 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                  "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                  "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
-                 "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--csv F] [--plot F.svg]\n"
-                 "             [--book-seconds S --book-rmse8 E]\n");
+                 "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]\n"
+                 "             [--plot F.svg] [--book-seconds S --book-rmse8 E]\n");
     std::exit(2);
 }
 
@@ -71,7 +74,7 @@ struct bench_options {
     bool scaling = false;
     int runs = 5, threads = 1, size = 1024, levels = 4;
     std::optional<int> width, spp, depth;
-    bool threads_given = false;
+    bool threads_given = false, runs_given = false;
 };
 
 bench_options parse(int argc, char** argv) {
@@ -90,9 +93,10 @@ bench_options parse(int argc, char** argv) {
                         "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                         "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                         "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
-                        "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--csv F]\n"
-                        "             [--plot F.svg] [--book-seconds S --book-rmse8 E]\n"
-                        "Medians of --runs runs (default 5); one thread unless --threads (0 = all cores).\n");
+                        "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N]\n"
+                        "             [--csv F] [--plot F.svg] [--book-seconds S --book-rmse8 E]\n"
+                        "Medians of --runs runs (default 5; 1 for --error); one thread unless --threads (0 = all cores;\n"
+                        "--error: all cores unless --threads).\n");
             std::exit(0);
         } else if (arg == "--scene") o.scene = next();
         else if (arg == "--mesh") o.mesh = next();
@@ -106,7 +110,10 @@ bench_options parse(int argc, char** argv) {
         else if (arg == "--adaptive") o.adaptive = true;
         else if (arg == "--book-seconds") o.book_seconds = app::parse_real(bench_description, arg, next(), 1e-6, 1e9);
         else if (arg == "--book-rmse8") o.book_rmse8 = app::parse_real(bench_description, arg, next(), 1e-9, 255);
-        else if (arg == "--runs") o.runs = integer(1, 1000);
+        else if (arg == "--runs") {
+            o.runs = integer(1, 1000);
+            o.runs_given = true;
+        }
         else if (arg == "--threads") {
             o.threads = integer(0, 1024);
             o.threads_given = true;
@@ -443,22 +450,38 @@ void bench_error(const bench_options& o) {
                               std::to_string(s.cam.frame().height) + " but the reference is " +
                               std::to_string(ref.pixels.width()) + "x" + std::to_string(ref.pixels.height()));
 
+    // The images to render: uniform sampling at 1, 2, 4 ... max_spp samples per pixel, then
+    // adaptive sampling (at most max_spp) at halving error targets, which span about the same
+    // average sample counts as uniform's from 16 spp up.
     std::vector<error_point> points;
-    auto run = [&](const std::string& mode, int spp, double adaptive_error) {
-        rt::camera cam = s.cam;
-        cam.samples_per_pixel = spp;
-        cam.adaptive_error = adaptive_error;
-        rt::render_result r = rt::render(cam, s.world);
-        error_point p{mode, spp, adaptive_error, r.stats.seconds, r.stats.rays, r.stats.samples,
-                      rt::compare_linear(r.img, ref.pixels), rt::compare_8bit(r.img, ref.pixels)};
-        std::fprintf(stderr, "bench: %s %d spp%s: %.2f s, rmse %.5f (8-bit %.3f)\n", mode.c_str(), spp,
-                     adaptive_error > 0 ? (" error " + std::to_string(adaptive_error)).c_str() : "", p.seconds,
-                     p.linear.rmse, p.display.rmse);
-        points.push_back(p);
-    };
-    for (int spp = 1; spp <= o.max_spp; spp *= 2) run("uniform", spp, 0);
-    if (o.adaptive) // halving error targets; a pixel takes at most max_spp samples
-        for (double e = 0.4; e > 0.01; e /= 2) run("adaptive", o.max_spp, e);
+    for (int spp = 1; spp <= o.max_spp; spp *= 2) points.push_back({"uniform", spp, 0, 0, 0, 0, {}, {}});
+    if (o.adaptive)
+        for (double e = 0.1; e > 5e-4; e /= 2) points.push_back({"adaptive", o.max_spp, e, 0, 0, 0, {}, {}});
+
+    // Each image is rendered `runs` times, the passes interleaved so that a slow spell of the
+    // machine falls on every kind alike; the time is the median. Images are identical each pass.
+    const int runs = o.runs_given ? o.runs : 1;
+    std::vector<std::vector<double>> seconds(points.size());
+    for (int pass = 0; pass < runs; ++pass)
+        for (size_t i = 0; i < points.size(); ++i) {
+            error_point& p = points[i];
+            rt::camera cam = s.cam;
+            cam.samples_per_pixel = p.spp;
+            cam.adaptive_error = p.adaptive_error;
+            rt::render_result r = rt::render(cam, s.world);
+            seconds[i].push_back(r.stats.seconds);
+            p.seconds = median(seconds[i]);
+            p.rays = r.stats.rays;
+            p.samples = r.stats.samples;
+            if (pass == 0) {
+                p.linear = rt::compare_linear(r.img, ref.pixels);
+                p.display = rt::compare_8bit(r.img, ref.pixels);
+            }
+            std::fprintf(stderr, "bench: pass %d/%d: %s %d spp%s: %.2f s, rmse %.5f (8-bit %.3f)\n", pass + 1, runs,
+                         p.mode.c_str(), p.spp,
+                         p.adaptive_error > 0 ? (" error " + std::to_string(p.adaptive_error)).c_str() : "",
+                         r.stats.seconds, p.linear.rmse, p.display.rmse);
+        }
 
     // The table and the CSV.
     std::string csv = "mode,spp,adaptive_error,seconds,rays,samples,rmse,relmse,bias_r,bias_g,bias_b,rmse8\n";
@@ -479,25 +502,38 @@ void bench_error(const bench_options& o) {
     }
     if (!o.csv.empty()) rt::detail::write_file_atomically(o.csv, csv);
 
-    // Curves: error against seconds, per mode.
-    auto curve = [&](const std::string& mode, bool display) {
+    // Adaptive against uniform: the rays and the time uniform sampling needs to reach each
+    // adaptive image's error (interpolated on its curve), in RMSE and in relMSE.
+    auto along = [&](const std::string& mode, auto x_of, auto y_of) {
         std::vector<double> x, y;
         for (const error_point& p : points)
             if (p.mode == mode) {
-                x.push_back(p.seconds);
-                y.push_back(display ? p.display.rmse : p.linear.rmse);
+                x.push_back(x_of(p));
+                y.push_back(y_of(p));
             }
         return std::make_pair(x, y);
     };
-    auto [ux, uy] = curve("uniform", false);
-    auto [ax, ay] = curve("adaptive", false);
-
-    // Adaptive against uniform: the time each needs to reach the adaptive points' errors.
-    for (size_t i = 0; i < ax.size(); ++i) {
-        std::optional<double> t_uniform = interpolate_loglog(uy, ux, ay[i]); // time as a function of error
-        if (t_uniform)
-            std::printf("adaptive reaches RMSE %.5f in %.2f s, uniform in %.2f s: %.2fx sooner\n", ay[i], ax[i],
-                        *t_uniform, *t_uniform / ax[i]);
+    auto rays_of = [](const error_point& p) { return double(p.rays); };
+    auto seconds_of = [](const error_point& p) { return p.seconds; };
+    auto rmse_of = [](const error_point& p) { return p.linear.rmse; };
+    auto relmse_of = [](const error_point& p) { return p.linear.rel_mse; };
+    auto rmse8_of = [](const error_point& p) { return p.display.rmse; };
+    auto curve = [&](const std::string& mode, bool display) {
+        return display ? along(mode, seconds_of, rmse8_of) : along(mode, seconds_of, rmse_of);
+    };
+    auto [u_rays, u_rmse] = along("uniform", rays_of, rmse_of);
+    auto [u_secs, u_rmse2] = along("uniform", seconds_of, rmse_of);
+    auto [u_rays2, u_relmse] = along("uniform", rays_of, relmse_of);
+    for (const error_point& p : points) {
+        if (p.mode != "adaptive") continue;
+        std::optional<double> rays = interpolate_loglog(u_rmse, u_rays, p.linear.rmse);
+        std::optional<double> secs = interpolate_loglog(u_rmse2, u_secs, p.linear.rmse);
+        std::optional<double> rel_rays = interpolate_loglog(u_relmse, u_rays2, p.linear.rel_mse);
+        if (!rays || !secs || !rel_rays) continue;
+        std::printf("adaptive, error %g: RMSE %.5f with %.1f Mrays in %.2f s; uniform needs %.1f Mrays (%.2fx) and "
+                    "%.2f s (%.2fx); at its relMSE %.3g uniform needs %.2fx the rays\n",
+                    p.adaptive_error, p.linear.rmse, double(p.rays) * 1e-6, p.seconds, *rays * 1e-6,
+                    *rays / double(p.rays), *secs, *secs / p.seconds, p.linear.rel_mse, *rel_rays / double(p.rays));
     }
 
     // The book's code: its 8-bit error at its time, against ours.

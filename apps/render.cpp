@@ -1,18 +1,93 @@
-// render: renders a scene file (format: README, "Scene files"). Flags override the file's
-// camera settings.
+// render: renders a scene file. A text scene (format: README, "Scene files") goes through the
+// path tracer, flags overriding the file's camera settings; a CENG795 XML scene (README,
+// "Whitted mode") goes through the Whitted ray tracer, one image per camera, named by the
+// camera's ImageName.
 //
 //   render scene.txt -o scene.png
 //   render scene.txt --width 1200 --spp 100 > scene.ppm
+//   render scene.xml -o out/ --bfc on
 
 #include "app_options.h"
 
 #include <rtweekend/render.h>
 #include <rtweekend/scene_io.h>
+#include <rtweekend/whitted.h>
+#include <rtweekend/xml_scene.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace {
+
+// Where each camera's image goes: ImageName inside the output directory. All are checked (known
+// format, writable, no two cameras on one file) before anything is rendered.
+std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std::string& scene_path,
+                                      const std::string& directory) {
+    namespace fs = std::filesystem;
+    fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
+    std::error_code ec;
+    if (!directory.empty()) {
+        if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+            throw rt::scene_error("-o " + directory + ": not a directory (an XML scene writes one image per camera)");
+        fs::create_directories(dir, ec);
+        if (ec) throw rt::scene_error("cannot create directory '" + directory + "': " + ec.message());
+    }
+    std::vector<std::string> paths;
+    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+        const std::string& name = scene.cameras[i].image_name;
+        if (name.empty())
+            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + " has no <ImageName>");
+        std::string path = (dir / name).lexically_normal().string();
+        std::string ext = rt::detail::lowercase_extension(path);
+        if (ext != ".png" && ext != ".ppm")
+            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +
+                                  "' must end in .png or .ppm");
+        for (size_t j = 0; j < i; ++j)
+            if (paths[j] == path)
+                throw rt::scene_error(scene_path + ": cameras " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                                      " would both write '" + path + "'");
+        fs::path parent = fs::path(path).parent_path();
+        if (!parent.empty()) fs::create_directories(parent, ec);
+        rt::check_output_path(path);
+        paths.push_back(path);
+    }
+    return paths;
+}
+
+void render_xml(const app::options& opt) {
+    const std::string& scene_path = opt.positional[0];
+    rt::whitted_scene scene = rt::load_xml_scene(scene_path);
+    if (scene.cameras.empty()) throw rt::scene_error(scene_path + ": the scene has no <Camera>: nothing to render");
+    std::vector<std::string> outputs = output_paths(scene, scene_path, opt.output);
+
+    rt::whitted_options options;
+    options.threads = opt.threads.value_or(0);
+    options.cull_back_faces = opt.cull_back_faces.value_or(false);
+    options.quiet = opt.quiet;
+    rt::whitted_renderer renderer(scene, options);
+    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+        rt::whitted_render r = renderer.render(i);
+        rt::write_whitted_image(outputs[i], r.img);
+        if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
+    }
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
-    const app::description d{"render", "Renders a scene file.", "SCENE.txt", 1, 1};
+    app::description d{"render", "Renders a scene file: a text scene with the path tracer, or a CENG795 XML scene "
+                                 "with the Whitted ray tracer.",
+                       "SCENE.txt|SCENE.xml", 1, 1};
+    d.xml_scenes = true;
     app::options opt = app::parse(argc, argv, d);
     return app::run(d, [&] {
+        if (app::is_xml_scene(opt.positional[0])) {
+            render_xml(opt);
+            return;
+        }
         rt::scene_description scene = rt::load_scene(opt.positional[0]);
         opt.apply(scene.cam);
         app::write_output(opt, scene.cam.render_image(scene.world));

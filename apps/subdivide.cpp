@@ -1,13 +1,18 @@
 // subdivide: Loop subdivision of an OBJ triangle mesh (rules: apps/loop_subdivision.h).
 //
 //   subdivide IN.obj OUT.obj [--levels N] [--quiet]
+//   subdivide IN.obj OUT.ply --levels 0             (converts to binary PLY, for XML scenes)
 //
 // Reads positions and faces (polygons fanned into triangles), subdivides N times (default 2),
-// writes "v" and "f" lines to OUT.obj through a temporary file and a rename. One summary line on
+// writes "v" and "f" lines to OUT.obj, or a binary little-endian PLY when OUT ends in .ply,
+// through a temporary file and a rename. One summary line on
 // stderr unless --quiet; one "subdivide: error: ..." line and exit 1 for bad input, 2 for bad
 // usage.
 
 #include "loop_subdivision.h"
+
+#include <rtweekend/image.h>
+#include <rtweekend/ply.h>
 
 #include <cerrno>
 #include <chrono>
@@ -27,8 +32,9 @@ const char* const program = "subdivide";
 
 void print_usage(std::FILE* to) {
     std::fprintf(to,
-                 "usage: subdivide IN.obj OUT.obj [--levels N] [--quiet]\n"
+                 "usage: subdivide IN.obj OUT.obj|OUT.ply [--levels N] [--quiet]\n"
                  "Loop subdivision of a triangle mesh (each level: 4x the triangles).\n"
+                 "An output ending in .ply is written as binary PLY (--levels 0 just converts).\n"
                  "  --levels N  rounds of subdivision, 0 to 8 (default 2)\n"
                  "  --quiet     no summary line on stderr\n"
                  "  --help      show this help\n");
@@ -118,9 +124,14 @@ int main(int argc, char** argv) {
         double subdivide_s = seconds_since(t1);
 
         auto t2 = std::chrono::steady_clock::now();
-        app::write_obj(a.output, out,
-                       std::to_string(out.positions.size()) + " vertices, " + std::to_string(out.triangles.size()) +
-                           " triangles: Loop subdivision of " + a.input + ", levels " + std::to_string(a.levels));
+        if (rt::detail::lowercase_extension(a.output) == ".ply") {
+            rt::triangle_mesh mesh(out.positions, out.triangles, nullptr);
+            rt::write_ply(a.output, mesh, /*binary=*/true);
+        } else {
+            app::write_obj(a.output, out,
+                           std::to_string(out.positions.size()) + " vertices, " + std::to_string(out.triangles.size()) +
+                               " triangles: Loop subdivision of " + a.input + ", levels " + std::to_string(a.levels));
+        }
         double write_s = seconds_since(t2);
 
         if (!a.quiet)

@@ -61,12 +61,15 @@ class camera {
     double defocus_angle = 0; // Variation angle of rays through each pixel
     double focus_dist = 10;   // Distance from camera lookfrom point to plane of perfect focus
 
-    // Adaptive sampling, off while adaptive_error is 0. A pixel stops taking samples once the 95 %
-    // confidence interval of its mean luminance is narrower than adaptive_error times its value
-    // (the mean of its first adaptive_min_samples samples, plus 0.1 in quadrature so that dark
-    // pixels are not chased to zero), a target that loosens as sqrt(n / adaptive_min_samples)
-    // (see adaptive_stop in render.h); checked after adaptive_min_samples and every 8 samples
-    // after that. samples_per_pixel is then the most a pixel takes.
+    // Adaptive sampling, off while adaptive_error is 0. Every pixel takes adaptive_min_samples
+    // samples; then, in rounds over the image, a pixel takes more until the 95 % confidence
+    // interval of its mean is narrower than adaptive_error times its value (its luminance, plus
+    // 0.3 in quadrature so that dark pixels are not chased to zero), a target that loosens as
+    // sqrt(n / adaptive_min_samples) and as the square root of the pixel's rays per sample
+    // (against the image's mean): the allocation of samples that minimises the image's squared
+    // error per ray traced. The samples' spread is estimated
+    // from the pixel's neighbours (rtweekend/adaptive.h explains both). samples_per_pixel is the
+    // most a pixel takes; render_stats::samples_saved counts the samples not taken.
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
 

@@ -93,19 +93,21 @@ inline std::vector<unsigned char> encode_8bit(const image& img) {
     return bytes;
 }
 
-// P3 PPM: "P3\n<w> <h>\n255\n" then one "r g b" line per pixel, rows top to bottom.
-inline void write_ppm(std::ostream& out, const image& img) {
-    out << "P3\n" << img.width() << ' ' << img.height() << "\n255\n";
-    std::vector<unsigned char> bytes = encode_8bit(img);
-    std::string text;
-    text.reserve(bytes.size() * 4);
+// P3 PPM text of 8-bit RGB bytes: "P3\n<w> <h>\n255\n" then one "r g b" line per pixel, rows top
+// to bottom.
+inline std::string ppm_text(int width, int height, const std::vector<unsigned char>& bytes) {
+    std::string text = "P3\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
+    text.reserve(text.size() + bytes.size() * 4);
     char line[16];
-    for (size_t i = 0; i < bytes.size(); i += 3) {
+    for (size_t i = 0; i + 2 < bytes.size(); i += 3) {
         int n = std::snprintf(line, sizeof line, "%d %d %d\n", bytes[i], bytes[i + 1], bytes[i + 2]);
         text.append(line, size_t(n));
     }
-    out << text;
+    return text;
 }
+
+// The image as P3 PPM, encoded the book's way: byte for byte what the book's code prints.
+inline void write_ppm(std::ostream& out, const image& img) { out << ppm_text(img.width(), img.height(), encode_8bit(img)); }
 
 namespace detail {
 
@@ -177,28 +179,29 @@ inline void write_file_atomically(const std::string& path, const std::string& co
 
 } // namespace detail
 
+// The file contents of 8-bit RGB bytes (rows top to bottom) for `path`'s extension: .ppm (P3),
+// .png or .bmp. Throws scene_error for other extensions.
+inline std::string encode_8bit_image(const std::string& path, int width, int height,
+                                     const std::vector<unsigned char>& bytes) {
+    std::string ext = detail::image_format(path);
+    if (width <= 0 || height <= 0 || bytes.size() != size_t(width) * size_t(height) * 3)
+        throw scene_error("cannot write '" + path + "': the image is empty or its size does not match its pixels");
+    if (ext == ".ppm") return ppm_text(width, height, bytes);
+    if (ext == ".pfm") throw scene_error("cannot write '" + path + "': 8-bit pixels cannot be written as PFM");
+    std::string out;
+    int ok = ext == ".png" ? stbi_write_png_to_func(detail::append_bytes, &out, width, height, 3, bytes.data(), width * 3)
+                           : stbi_write_bmp_to_func(detail::append_bytes, &out, width, height, 3, bytes.data());
+    if (!ok) throw scene_error("cannot encode '" + path + "'");
+    return out;
+}
+
 // The file contents write_image would write for `path`'s extension.
 inline std::string encode_image(const std::string& path, const image& img) {
     if (img.empty())
         throw scene_error("cannot write '" + path + "': the image is empty (" + std::to_string(img.width()) + "x" +
                           std::to_string(img.height()) + ")");
-    std::string ext = detail::image_format(path);
-    std::string out;
-    if (ext == ".ppm") {
-        std::ostringstream s;
-        write_ppm(s, img);
-        out = s.str();
-    } else if (ext == ".png" || ext == ".bmp") {
-        std::vector<unsigned char> bytes = encode_8bit(img);
-        int ok = ext == ".png"
-                     ? stbi_write_png_to_func(detail::append_bytes, &out, img.width(), img.height(), 3, bytes.data(),
-                                              img.width() * 3)
-                     : stbi_write_bmp_to_func(detail::append_bytes, &out, img.width(), img.height(), 3, bytes.data());
-        if (!ok) throw scene_error("cannot encode '" + path + "'");
-    } else {
-        out = detail::encode_pfm(img);
-    }
-    return out;
+    if (detail::image_format(path) == ".pfm") return detail::encode_pfm(img);
+    return encode_8bit_image(path, img.width(), img.height(), encode_8bit(img));
 }
 
 inline void write_image(const std::string& path, const image& img) {

@@ -47,6 +47,9 @@ class triangle_mesh : public hittable {
     // vector is empty when the mesh has no such data at all.
     std::vector<std::array<uint32_t, 3>> face_normals, face_uvs;
     std::shared_ptr<material> mat;
+    // Shade with the normals interpolated across each triangle (barycentrically) instead of the
+    // flat geometric normal. Needs normals and face_normals. Used by the Whitted renderer.
+    bool smooth_shading = false;
 
     triangle_mesh() = default;
     triangle_mesh(std::vector<point3> positions, std::vector<std::array<uint32_t, 3>> faces,

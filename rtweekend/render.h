@@ -4,11 +4,13 @@
 //   render_result render(const camera& cam, const hittable& world);   // image + statistics
 //
 // The world is first compiled into a flat scene (scene.h). The image is cut into 16x16 tiles
-// that workers take from an atomic counter; each pixel's samples are drawn from generators
-// seeded by (seed, pixel, sample), so the image is bit-identical for any thread count. A sample
+// that workers take from an atomic counter (with adaptive sampling: rounds over the whole image,
+// planned by adaptive.h); each pixel's samples are drawn from generators seeded by (seed, pixel,
+// sample), so the image is bit-identical for any thread count. A sample
 // that comes out NaN or infinite is dropped and counted; the count is reported. Progress and the
 // final statistics (rays, seconds, Mrays/s) go to stderr unless cam.quiet is set.
 
+#include "adaptive.h"
 #include "camera.h"
 #include "image.h"
 #include "ray_offset.h"
@@ -137,6 +139,10 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
         } else {
             m = &scene.materials[hit.material];
         }
+        // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
+        // inside it (directions are unit).
+        if (m->kind == material_kind::exact_dielectric && !hit.front_face)
+            throughput *= beer_transmittance(m->absorption, hit.t);
 
         vec3f dir, attenuation;
         bool scattered = m->kind == material_kind::custom
@@ -184,139 +190,193 @@ inline bool stderr_is_terminal() {
 #endif
 }
 
-// Adaptive sampling's stopping rule for one pixel (see camera::adaptive_error): a running mean
-// and variance of the samples' luminance, and a confidence interval checked every 8 samples.
-class adaptive_stop {
-  public:
-    explicit adaptive_stop(const camera& cam)
-        : error_(cam.adaptive_error), min_samples_(std::max(2, cam.adaptive_min_samples)) {}
-
-    // Records the sample; true when the pixel has enough.
-    bool enough(const vec3f& c, int taken) {
-        if (error_ <= 0) return false;
-        // Rec. 709 luminance: the noise a viewer sees is mostly in brightness.
-        double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-        sum_ += y;
-        sum_squares_ += y * y;
-        if (taken < min_samples_ || (taken - min_samples_) % check_every != 0) return false;
-        double n = taken, mean = sum_ / n;
-        double variance = std::max(0.0, (sum_squares_ - n * mean * mean) / (n - 1));
-        double half_width = 1.96 * std::sqrt(variance / n); // 95 % interval of the mean
-        // "Relative to the pixel's value" means the value of the first min_samples samples, fixed
-        // from then on: a target that followed the running mean would let a pixel stop sooner
-        // whenever its mean happened to be high, and bias the image upwards.
-        if (taken == min_samples_) scale_ = std::sqrt(mean * mean + 0.01);
-        // The target loosens as sqrt(n / min_samples): a pixel stops once sigma / n, the error
-        // one more sample would remove, is small, which spends samples in proportion to a
-        // pixel's noise (the allocation that minimises the image's total squared error). A fixed
-        // target would spend them in proportion to the noise squared, and pour the budget into
-        // the few noisiest pixels.
-        return half_width <= error_ * scale_ * std::sqrt(n / min_samples_);
-    }
-
-  private:
-    static constexpr int check_every = 8;
-    double error_;
-    int min_samples_;
-    double sum_ = 0, sum_squares_ = 0;
-    double scale_ = 1;
+// What the workers of a render counted.
+struct sample_totals {
+    uint64_t rays = 0, samples = 0, nonfinite = 0;
 };
 
-// Runs `sample(x, y, s, rng, rays)` -> vec3f for every sample of every pixel, in tiles on
-// worker threads, and averages the samples into an image.
-template <class SampleFn>
-render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&& sample,
-                        std::chrono::steady_clock::time_point start) {
-    constexpr int tile = 16;
-    const int w = frame.width, h = frame.height, spp = cam.samples_per_pixel;
-    const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile, tile_count = tiles_x * tiles_y;
-    int threads = cam.threads > 0 ? cam.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    threads = std::min(threads, tile_count);
-
-    render_result result;
-    result.img = image(w, h);
-    std::vector<float>& pixels = result.img.data();
-    std::atomic<int> next_tile{0}, tiles_done{0}, percent_shown{0};
-    std::atomic<uint64_t> total_rays{0}, total_nonfinite{0}, total_samples{0};
+// Runs job(i, totals) for i in [0, count) on `threads` threads (the caller's among them), the
+// jobs handed out by an atomic counter; then rethrows the first exception a job threw.
+template <class Job>
+sample_totals run_jobs(int threads, int count, Job&& job) {
+    std::atomic<int> next{0};
+    std::atomic<uint64_t> rays{0}, samples{0}, nonfinite{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     std::atomic<bool> failed{false};
-
-    const bool interactive = stderr_is_terminal();
-    if (!cam.quiet && !interactive) std::fprintf(stderr, "rtweekend: rendering");
-
     auto worker = [&] {
         scoped_flush_denormals flush; // this thread's float mode, restored when the worker ends
-        uint64_t rays = 0, nonfinite = 0, samples = 0;
+        sample_totals mine;
         try {
-            for (int t = next_tile++; t < tile_count && !failed; t = next_tile++) {
-                int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
-                int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
-                for (int y = y0; y < y1; ++y) {
-                    for (int x = x0; x < x1; ++x) {
-                        uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
-                        double sum[3] = {0, 0, 0};
-                        adaptive_stop stop(cam);
-                        int taken = 0;
-                        while (taken < spp) {
-                            pcg32 rng = sample_rng(cam.seed, pixel, uint64_t(taken));
-                            vec3f c = sample(x, y, taken, rng, rays);
-                            ++taken;
-                            if (!is_finite(c)) { // dropped: it counts as a sample of 0
-                                ++nonfinite;
-                                c = {0, 0, 0};
-                            }
-                            sum[0] += c.x;
-                            sum[1] += c.y;
-                            sum[2] += c.z;
-                            if (stop.enough(c, taken)) break;
-                        }
-                        samples += uint64_t(taken);
-                        float* out = &pixels[pixel * 3];
-                        for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(sum[k] / taken);
-                    }
-                }
-                int done = ++tiles_done;
-                if (!cam.quiet) {
-                    // A terminal gets a counter updated in place; a log gets every tenth percent.
-                    int step = interactive ? 1 : 10;
-                    int pct = int(int64_t(done) * 100 / tile_count) / step * step;
-                    int shown = percent_shown.load();
-                    while (pct > shown && !percent_shown.compare_exchange_weak(shown, pct)) {}
-                    if (pct > shown) {
-                        if (interactive) std::fprintf(stderr, "\rrtweekend: rendering %3d%%", pct);
-                        else std::fprintf(stderr, " %d%%", pct);
-                    }
-                }
-            }
+            for (int i = next++; i < count && !failed; i = next++) job(i, mine);
         } catch (...) {
             std::lock_guard<std::mutex> lock(failure_mutex);
             if (!failure) failure = std::current_exception();
             failed = true;
         }
-        total_rays += rays;
-        total_nonfinite += nonfinite;
-        total_samples += samples;
+        rays += mine.rays;
+        samples += mine.samples;
+        nonfinite += mine.nonfinite;
     };
-
     std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+    for (int i = 1; i < std::min(threads, count); ++i) pool.emplace_back(worker);
     worker();
     for (auto& th : pool) th.join();
-    if (!cam.quiet) std::fprintf(stderr, "\n");
     if (failure) std::rethrow_exception(failure);
+    return {rays.load(), samples.load(), nonfinite.load()};
+}
 
-    render_stats& st = result.stats;
-    st.width = w;
-    st.height = h;
-    st.samples_per_pixel = spp;
+// Sample s of pixel (x, y), from its own generator; a NaN or infinite sample is dropped and
+// counts as a sample of 0.
+template <class SampleFn>
+vec3f take_sample(uint64_t seed, int width, SampleFn& sample, int x, int y, int s, sample_totals& t) {
+    uint64_t pixel = uint64_t(y) * uint64_t(width) + uint64_t(x);
+    pcg32 rng = sample_rng(seed, pixel, uint64_t(s));
+    vec3f c = sample(x, y, s, rng, t.rays);
+    ++t.samples;
+    if (is_finite(c)) return c;
+    ++t.nonfinite;
+    return {0, 0, 0};
+}
+
+// Progress on stderr: a terminal gets a counter updated in place, a log every tenth percent.
+class progress_meter {
+  public:
+    explicit progress_meter(bool quiet) : quiet_(quiet), interactive_(stderr_is_terminal()) {
+        if (!quiet_ && !interactive_) std::fprintf(stderr, "rtweekend: rendering");
+    }
+    // Adaptive sampling's rounds: each is counted on its own, and a log gets their numbers only.
+    void start_round(int round) {
+        round_ = round;
+        shown_ = -1;
+        if (!quiet_ && !interactive_) std::fprintf(stderr, " [round %d]", round);
+    }
+    void show(int64_t done, int64_t total) {
+        if (quiet_ || (round_ >= 0 && !interactive_)) return;
+        int step = interactive_ ? 1 : 10;
+        int pct = int(done * 100 / std::max<int64_t>(1, total)) / step * step;
+        int shown = shown_.load();
+        while (pct > shown && !shown_.compare_exchange_weak(shown, pct)) {}
+        if (pct <= shown) return;
+        if (round_ >= 0) std::fprintf(stderr, "\rrtweekend: rendering, round %d: %3d%%", round_, pct);
+        else if (interactive_) std::fprintf(stderr, "\rrtweekend: rendering %3d%%", pct);
+        else std::fprintf(stderr, " %d%%", pct);
+    }
+    void finish() {
+        if (!quiet_) std::fprintf(stderr, "\n");
+    }
+
+  private:
+    bool quiet_, interactive_;
+    int round_ = -1;
+    std::atomic<int> shown_{0};
+};
+
+inline int render_threads(const camera& cam, int jobs) {
+    int threads = cam.threads > 0 ? cam.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    return std::max(1, std::min(threads, jobs));
+}
+
+inline render_stats make_stats(const camera& cam, const camera_frame& frame, int threads, const sample_totals& t,
+                               std::chrono::steady_clock::time_point start) {
+    render_stats st;
+    st.width = frame.width;
+    st.height = frame.height;
+    st.samples_per_pixel = cam.samples_per_pixel;
     st.threads = threads;
-    st.rays = total_rays;
-    st.samples = total_samples;
-    st.samples_saved = uint64_t(w) * uint64_t(h) * uint64_t(spp) - total_samples;
-    st.nonfinite_samples = total_nonfinite;
+    st.rays = t.rays;
+    st.samples = t.samples;
+    st.samples_saved = uint64_t(frame.width) * uint64_t(frame.height) * uint64_t(cam.samples_per_pixel) - t.samples;
+    st.nonfinite_samples = t.nonfinite;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!cam.quiet) std::fprintf(stderr, "%s\n", describe(st).c_str());
+    return st;
+}
+
+// Adaptive sampling (camera::adaptive_error; the plan and why: adaptive.h): rounds over the
+// whole image, each round's samples taken in parallel, each pixel by one thread in sample order.
+template <class SampleFn>
+render_result run_adaptive(const camera& cam, const camera_frame& frame, SampleFn& sample,
+                           std::chrono::steady_clock::time_point start) {
+    const int w = frame.width, h = frame.height;
+    const int threads = render_threads(cam, int(std::min<int64_t>(int64_t(w) * h, 1 << 20)));
+    adaptive_settings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.error = cam.adaptive_error;
+    settings.min_samples = cam.adaptive_min_samples;
+    settings.max_samples = cam.samples_per_pixel;
+    settings.threads = threads;
+    adaptive_sampler plan(settings);
+
+    progress_meter progress(cam.quiet);
+    sample_totals totals;
+    for (int round = 0; plan.plan_round(); ++round) {
+        progress.start_round(round);
+        std::atomic<int> jobs_done{0};
+        const int jobs = int(plan.job_count());
+        sample_totals t = run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
+            for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
+                int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
+                for (int s = item.first; s < item.first + item.count; ++s) {
+                    uint64_t rays_before = mine.rays;
+                    vec3f c = take_sample(cam.seed, w, sample, x, y, s, mine);
+                    plan.add(item.pixel, c, mine.rays - rays_before);
+                }
+            }
+            progress.show(++jobs_done, jobs);
+        });
+        totals.rays += t.rays;
+        totals.samples += t.samples;
+        totals.nonfinite += t.nonfinite;
+    }
+    progress.finish();
+
+    render_result result;
+    result.img = image(w, h);
+    plan.write(result.img.data());
+    result.stats = make_stats(cam, frame, threads, totals, start);
+    return result;
+}
+
+// Runs `sample(x, y, s, rng, rays)` -> vec3f for every sample of every pixel, in tiles on
+// worker threads, and averages the samples into an image (with adaptive sampling, when
+// cam.adaptive_error is set, a pixel takes as many samples as it needs, at most
+// samples_per_pixel).
+template <class SampleFn>
+render_result run_tiles(const camera& cam, const camera_frame& frame, SampleFn&& sample,
+                        std::chrono::steady_clock::time_point start) {
+    if (cam.adaptive_error > 0) return run_adaptive(cam, frame, sample, start);
+    constexpr int tile = 16;
+    const int w = frame.width, h = frame.height, spp = cam.samples_per_pixel;
+    const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile, tile_count = tiles_x * tiles_y;
+    const int threads = render_threads(cam, tile_count);
+
+    render_result result;
+    result.img = image(w, h);
+    std::vector<float>& pixels = result.img.data();
+    progress_meter progress(cam.quiet);
+    std::atomic<int> tiles_done{0};
+    sample_totals totals = run_jobs(threads, tile_count, [&](int t, sample_totals& mine) {
+        int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+        int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+                double sum[3] = {0, 0, 0};
+                for (int s = 0; s < spp; ++s) {
+                    vec3f c = take_sample(cam.seed, w, sample, x, y, s, mine);
+                    sum[0] += c.x;
+                    sum[1] += c.y;
+                    sum[2] += c.z;
+                }
+                float* out = &pixels[(size_t(y) * size_t(w) + size_t(x)) * 3];
+                for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(sum[k] / spp);
+            }
+        }
+        progress.show(++tiles_done, tile_count);
+    });
+    progress.finish();
+    result.stats = make_stats(cam, frame, threads, totals, start);
     return result;
 }
 

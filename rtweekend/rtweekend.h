@@ -22,7 +22,9 @@
 // The engine underneath, and files.
 #include "bsdf.h"
 #include "bvh.h"
+#include "fresnel.h"
 #include "image.h"
+#include "ply.h"
 #include "ray_offset.h"
 #include "render.h"
 #include "sampling.h"
@@ -31,6 +33,8 @@
 #include "scene_io.h"
 #include "simd.h"
 #include "vec3f.h"
+#include "whitted.h"
+#include "xml_scene.h"
 
 #include <cmath>
 #include <iostream>

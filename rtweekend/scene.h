@@ -49,6 +49,8 @@ struct surface_hit {
     float t = std::numeric_limits<float>::infinity();
     vec3f p;               // hit point, relative to the scene origin
     vec3f normal;          // unit geometric normal, facing the incoming ray
+    vec3f shading_normal;  // unit normal to shade with, on the same side: the geometric normal,
+                           // or a smooth mesh's interpolated vertex normals
     bool front_face = true;
     float offset = 0;      // extra push off the surface for spawned rays (primitive's own error)
     uint32_t material = 0; // index into compiled_scene::materials
@@ -73,6 +75,13 @@ class compiled_scene {
     size_t degenerate_triangles = 0; // of zero area, left out
     std::array<std::vector<float>, 9> triangle_vertex;
     std::vector<uint32_t> triangle_material;
+    // Vertex normals, laid out like triangle_vertex, for meshes with smooth_shading; empty when
+    // no mesh has it (flat triangles then repeat their face normal).
+    std::array<std::vector<float>, 9> triangle_normal;
+
+    // Back-face culling (set_back_face_culling): per primitive, in leaf order, 1 where a hit on
+    // the back face is skipped, 0 where it is kept; empty while culling is not set up.
+    std::vector<float> triangle_cull, sphere_cull;
 
     bvh8 bvh; // over the spheres and triangles
 
@@ -83,6 +92,13 @@ class compiled_scene {
 
     // The closest hit with t in (ray.tmin, ray.tmax); false when the ray escapes.
     bool intersect(const ray3f& r, surface_hit& hit) const;
+    // The same, skipping back faces of the primitives set_back_face_culling marked (a sphere's
+    // back face is the exit point of a ray that starts inside it).
+    bool intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const;
+    // Marks the primitives whose back faces intersect_culling_back_faces skips: those whose
+    // material index `cullable` accepts (opaque ones: a glass object's back face must be found).
+    template <class Predicate>
+    void set_back_face_culling(Predicate cullable);
     // Whether anything at all is hit with t in (ray.tmin, ray.tmax): for shadow rays.
     bool occluded(const ray3f& r) const;
 
@@ -97,9 +113,9 @@ class compiled_scene {
         primitive_type type = primitive_type::sphere;
         uint32_t index = UINT32_MAX;
     };
-    template <bool Spheres, bool Triangles, bool AnyHit>
+    template <bool Spheres, bool Triangles, bool AnyHit, bool Cull = false>
     bool trace(const ray3f& r, float& tmax, hit_ref& best) const;
-    bool trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit) const;
+    bool trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit, bool cull = false) const;
     void fill_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const;
 };
 
@@ -150,6 +166,22 @@ inline material_desc make_material_desc(const material* m) {
         d.kind = material_kind::dielectric;
         d.albedo = {1, 1, 1};
         d.refraction_index = static_cast<float>(ri);
+        if (g->exact_fresnel()) {
+            check_color(g->absorption(), "dielectric absorption");
+            d.kind = material_kind::exact_dielectric;
+            d.absorption = vec3f(g->absorption());
+        }
+    } else if (type == typeid(conductor)) {
+        auto* c = static_cast<const conductor*>(m);
+        check_color(c->tint(), "conductor tint");
+        check_color(c->n(), "conductor n");
+        check_color(c->k(), "conductor k");
+        if (!(c->n().x() > 0 && c->n().y() > 0 && c->n().z() > 0))
+            throw scene_error("conductor n must be positive, got " + describe(c->n()));
+        d.kind = material_kind::conductor;
+        d.albedo = vec3f(c->tint());
+        d.eta = vec3f(c->n());
+        d.k = vec3f(c->k());
     } else {
         d.kind = material_kind::custom;
         d.custom = m;
@@ -226,6 +258,8 @@ class scene_compiler {
     struct triangle_input {
         std::array<vec3f, 3> v;
         uint32_t material;
+        std::array<vec3f, 3> n{}; // shading normals at the vertices (smooth meshes), else zero
+        bool smooth = false;
     };
 
     static float down(double x) { return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity()); }
@@ -282,9 +316,28 @@ class scene_compiler {
                 if (v >= mesh.positions.size())
                     throw scene_error("triangle mesh face " + std::to_string(i) + " uses vertex " + std::to_string(v) +
                                       " of " + std::to_string(mesh.positions.size()));
-            if (!add_triangle(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]], m))
+            if (!add_triangle(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]], m)) {
                 ++out_.degenerate_triangles;
+                continue;
+            }
+            if (mesh.smooth_shading && i < mesh.face_normals.size()) set_vertex_normals(mesh, i);
         }
+    }
+
+    // A smooth mesh's triangle takes its corners' normals; a corner without a usable normal gets
+    // the face normal.
+    void set_vertex_normals(const triangle_mesh& mesh, size_t face) {
+        triangle_input& t = triangles_.back();
+        vec3f face_normal = vec3f(unit_vector(cross(t.v[1].to_double() - t.v[0].to_double(),
+                                                    t.v[2].to_double() - t.v[0].to_double())));
+        for (size_t k = 0; k < 3; ++k) {
+            uint32_t index = mesh.face_normals[face][k];
+            vec3 n = index < mesh.normals.size() ? mesh.normals[index] : vec3(0, 0, 0);
+            double len = n.length();
+            t.n[k] = finite3(n) && len > 0 ? vec3f(n / len) : face_normal;
+        }
+        t.smooth = true;
+        any_smooth_ = true;
     }
 
     void push_sphere(const sphere_input& s, bool never_hit = false) {
@@ -306,12 +359,23 @@ class scene_compiler {
         for (int v = 0; v < 3; ++v)
             for (int axis = 0; axis < 3; ++axis) out_.triangle_vertex[size_t(3 * v + axis)].push_back(t.v[size_t(v)][axis]);
         out_.triangle_material.push_back(t.material);
+        if (!any_smooth_) return;
+        std::array<vec3f, 3> n = t.n;
+        if (!t.smooth) {
+            vec3 e1 = t.v[1].to_double() - t.v[0].to_double(), e2 = t.v[2].to_double() - t.v[0].to_double();
+            vec3 c = cross(e1, e2);
+            vec3f face = c.length_squared() > 0 ? vec3f(unit_vector(c)) : vec3f(0, 0, 1); // padding: never hit
+            n = {face, face, face};
+        }
+        for (int v = 0; v < 3; ++v)
+            for (int axis = 0; axis < 3; ++axis) out_.triangle_normal[size_t(3 * v + axis)].push_back(n[size_t(v)][axis]);
     }
 
     compiled_scene& out_;
     std::unordered_map<const material*, uint32_t> index_;
     std::vector<sphere_input> spheres_;
     std::vector<triangle_input> triangles_;
+    bool any_smooth_ = false;
 };
 
 // The ray in the frame of the watertight triangle test (triangle.h), for all of a leaf's lanes.
@@ -349,10 +413,12 @@ inline size_t compiled_scene::geometry_bytes() const {
     bytes += (sphere_x.size() * 6) * sizeof(float) + sphere_material.size() * sizeof(uint32_t);
     for (const auto& v : triangle_vertex) bytes += v.size() * sizeof(float);
     bytes += triangle_material.size() * sizeof(uint32_t);
+    for (const auto& n : triangle_normal) bytes += n.size() * sizeof(float);
+    bytes += (triangle_cull.size() + sphere_cull.size()) * sizeof(float);
     return bytes;
 }
 
-template <bool Spheres, bool Triangles, bool AnyHit>
+template <bool Spheres, bool Triangles, bool AnyHit, bool Cull>
 bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
     constexpr size_t W = floatv::width;
     const floatv lanes = lane_index();
@@ -391,6 +457,8 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
             floatv ta = c / q;
             floatv t0 = min(ta, q), t1 = max(ta, q);
             floatv t = select(t0 > tmin, t0, t1);
+            // Culled: a ray that starts inside (or past) the sphere only meets its back face.
+            if constexpr (Cull) t = select((t0 > tmin) | (floatv::load(&sphere_cull[i]) == zero), t, floatv(-1.0f));
             maskv hits = crosses & (t > tmin) & (t < floatv(t_best));
             if (!any(hits)) continue;
             if (AnyHit) return true;
@@ -455,6 +523,9 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
             if (!any(candidates)) continue;
             floatv det = u + v + w;
             floatv t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det; // det = 0: inf or NaN, rejected
+            // The determinant is positive exactly when the ray meets the front face (the side the
+            // counter-clockwise normal points to): culled triangles keep only those hits.
+            if constexpr (Cull) candidates = candidates & ((det * floatv::load(&triangle_cull[i])) >= zero);
             maskv hits = candidates & (t > tmin) & (t < floatv(t_best));
             if (!any(hits)) continue;
             if (AnyHit) return true;
@@ -478,9 +549,14 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
 }
 
 // Picks the traversal compiled for the primitive kinds this scene has.
-inline bool compiled_scene::trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit) const {
+inline bool compiled_scene::trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit,
+                                              bool cull) const {
     const bool s = sphere_count > 0, t = triangle_count > 0;
-    if (any_hit) {
+    if (cull) {
+        if (s && t) return trace<true, true, false, true>(r, tmax, best);
+        if (s) return trace<true, false, false, true>(r, tmax, best);
+        if (t) return trace<false, true, false, true>(r, tmax, best);
+    } else if (any_hit) {
         if (s && t) return trace<true, true, true>(r, tmax, best);
         if (s) return trace<true, false, true>(r, tmax, best);
         if (t) return trace<false, true, true>(r, tmax, best);
@@ -503,6 +579,7 @@ inline void compiled_scene::fill_hit(const ray3f& r, float t, const hit_ref& bes
         hit.p = center + sphere_r[i] * outward;
         hit.front_face = dot(r.dir, outward) < 0;
         hit.normal = hit.front_face ? outward : -outward;
+        hit.shading_normal = hit.normal;
         hit.offset = sphere_offset[i];
         hit.material = sphere_material[i];
         return;
@@ -521,8 +598,40 @@ inline void compiled_scene::fill_hit(const ray3f& r, float t, const hit_ref& bes
     hit.p = vec3f(p);
     hit.front_face = dot(r.dir, outward) < 0;
     hit.normal = hit.front_face ? outward : -outward;
+    hit.shading_normal = hit.normal;
+    if (!triangle_normal[0].empty() && det != 0) {
+        // Smooth shading: the vertex normals weighted by the barycentric coordinates.
+        auto normal = [&](int v) {
+            return vec3(triangle_normal[size_t(3 * v)][i], triangle_normal[size_t(3 * v + 1)][i],
+                        triangle_normal[size_t(3 * v + 2)][i]);
+        };
+        vec3 n = (u * normal(0) + v * normal(1) + w * normal(2)) / det;
+        double len = n.length();
+        if (len > 0) hit.shading_normal = hit.front_face ? vec3f(n / len) : vec3f(-n / len);
+    }
     hit.offset = 0; // the barycentric point is within an ulp of the plane; the ray offset suffices
     hit.material = triangle_material[i];
+}
+
+inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const {
+    if (sphere_cull.empty() && triangle_cull.empty()) return intersect(r, hit);
+    float t = r.tmax;
+    hit_ref best;
+    bool found = trace_any_feature(r, t, best, false, true);
+    if (found) fill_hit(r, t, best, hit);
+    hit.custom_object = nullptr;
+    return found; // user-written hittables are not culled
+}
+
+template <class Predicate>
+void compiled_scene::set_back_face_culling(Predicate cullable) {
+    auto flags = [&](const std::vector<uint32_t>& materials, size_t count) {
+        std::vector<float> f(materials.size(), 0.0f); // the padding lanes never hit anyway
+        for (size_t i = 0; i < count; ++i) f[i] = cullable(materials[i]) ? 1.0f : 0.0f;
+        return f;
+    };
+    sphere_cull = flags(sphere_material, sphere_count);
+    triangle_cull = flags(triangle_material, triangle_count);
 }
 
 inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
@@ -550,6 +659,7 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
             hit.t = static_cast<float>(h.t);
             hit.p = vec3f(h.p - origin);
             hit.normal = normalize(vec3f(h.normal));
+            hit.shading_normal = hit.normal;
             hit.front_face = h.front_face;
             hit.offset = 0;
         }

@@ -12,18 +12,26 @@
 //                                adaptive_error e | adaptive_min_samples n
 //   sphere cx cy cz radius <material>
 //   triangle ax ay az bx by bz cx cy cz <material>
-//   mesh file.obj <material>     an OBJ mesh; a relative path is relative to the scene file
-// where <material> is: <lambertian|metal|dielectric> r g b fuzz ior (all five numbers always
-// given; a material ignores those it does not use).
+//   mesh file.obj <material>     an OBJ mesh (or .ply: a PLY mesh); a relative path is relative to
+//                                the scene file
+// where <material> is <kind> and always five numbers (a material ignores those it does not use):
+//   lambertian r g b fuzz ior    albedo
+//   metal r g b fuzz ior         albedo, fuzz
+//   dielectric r g b fuzz ior    ior: the book's glass (Schlick)
+//   glass ar ag ab 0 ior         ior and absorption per unit length (0 0 0: clear): exact
+//                                Fresnel and Beer's law, dielectric(ior, absorption)
+//   conductor r g b n k          tint and complex index n + ik: conductor(n, k, tint)
 
 #include "camera.h"
 #include "hittable_list.h"
 #include "material.h"
 #include "mesh.h"
+#include "ply.h"
 #include "scene_error.h"
 #include "sphere.h"
 #include "triangle.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -144,14 +152,25 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
     }
 }
 
-// The material at the end of a primitive line: <lambertian|metal|dielectric> r g b fuzz ior,
+// The material at the end of a primitive line: <kind> r g b fuzz ior (conductor: r g b n k),
 // starting at field i.
 inline std::shared_ptr<material> parse_material(const scene_line& line, size_t i) {
     const std::string& kind = line.word(i);
-    color albedo = line.vector(i + 1, "albedo");
-    if (albedo.x() < 0 || albedo.y() < 0 || albedo.z() < 0) line.fail("albedo must be non-negative");
-    double fuzz = line.number(i + 4, "fuzz");
-    double ior = line.number(i + 5, "ior");
+    const bool is_conductor = kind == "conductor", is_glass = kind == "glass";
+    const char* rgb_name = is_conductor ? "conductor tint" : is_glass ? "glass absorption" : "albedo";
+    color albedo = line.vector(i + 1, rgb_name);
+    if (albedo.x() < 0 || albedo.y() < 0 || albedo.z() < 0) line.fail(std::string(rgb_name) + " must be non-negative");
+    double fuzz = line.number(i + 4, is_conductor ? "conductor n" : "fuzz");
+    double ior = line.number(i + 5, is_conductor ? "conductor k" : "ior");
+    if (is_conductor) {
+        if (!(fuzz > 0)) line.fail("conductor n must be positive, got " + line.word(i + 4));
+        if (!(ior >= 0)) line.fail("conductor k must be non-negative, got " + line.word(i + 5));
+        return std::make_shared<conductor>(fuzz, ior, albedo);
+    }
+    if (is_glass) {
+        if (!(ior > 0)) line.fail("glass ior must be positive, got " + line.word(i + 5));
+        return std::make_shared<dielectric>(ior, albedo);
+    }
     if (kind == "lambertian") return std::make_shared<lambertian>(albedo);
     if (kind == "metal") {
         if (fuzz < 0) line.fail("metal fuzz must be non-negative, got " + line.word(i + 4));
@@ -161,7 +180,7 @@ inline std::shared_ptr<material> parse_material(const scene_line& line, size_t i
         if (!(ior > 0)) line.fail("dielectric ior must be positive, got " + line.word(i + 5));
         return std::make_shared<dielectric>(ior);
     }
-    line.fail("unknown material '" + kind + "' (expected lambertian, metal or dielectric)");
+    line.fail("unknown material '" + kind + "' (expected lambertian, metal, dielectric, glass or conductor)");
 }
 
 inline std::shared_ptr<hittable> parse_sphere_line(const scene_line& line) {
@@ -186,6 +205,10 @@ inline std::shared_ptr<hittable> parse_mesh_line(const scene_line& line, const s
     if (obj.is_relative()) obj = std::filesystem::path(scene_name).parent_path() / obj;
     std::shared_ptr<material> mat = parse_material(line, 2);
     try {
+        // By extension: Stanford PLY, or else Wavefront OBJ.
+        std::string ext = obj.extension().string();
+        for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        if (ext == ".ply") return load_ply(obj.string(), std::move(mat));
         return load_obj(obj.string(), std::move(mat));
     } catch (const scene_error& e) {
         line.fail(e.what());

@@ -208,6 +208,23 @@ TEST_CASE("scene files: 'mesh' and 'triangle' lines") {
     fails("\ntriangle 0 0 0 1 0 0 0 1 0 lambertian 1 1 1 0\n", "expected 'triangle");
 }
 
+TEST_CASE("scene files: a 'mesh' line reads a .ply file as PLY") {
+    scratch_dir dir("scene_ply");
+    // An ASCII PLY square (two triangles after the fan split), next to the scene file.
+    dir.write("square.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    scene_description s = load_scene(dir.write("scene.txt", "mesh square.ply lambertian 0.5 0.5 0.5 0 0\n"));
+    REQUIRE(s.world.objects.size() == 1);
+    auto mesh = std::dynamic_pointer_cast<triangle_mesh>(s.world.objects[0]);
+    REQUIRE(mesh);
+    CHECK(mesh->triangle_count() == 2);
+    CHECK(mesh->positions[2].x() == 1.0);
+    CHECK(mesh->positions[2].y() == 1.0);
+    CHECK_THROWS_WITH_AS(load_scene(dir.write("bad.txt", "mesh nowhere.ply lambertian 1 1 1 0 0\n")),
+                         doctest::Contains("nowhere.ply"), scene_error);
+}
+
 TEST_CASE("render: a convex mesh in a white furnace renders its albedo exactly, near and far") {
     // A closed convex mesh (the cube) under a uniform white sky: a path leaving a Lambertian
     // face can never hit the cube again, so every sample that sees the cube is exactly the

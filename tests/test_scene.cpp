@@ -3,6 +3,7 @@
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
+#include <rtweekend/mesh.h>
 #include <rtweekend/render.h>
 #include <rtweekend/scene.h>
 #include <rtweekend/sphere.h>
@@ -194,4 +195,105 @@ TEST_CASE("compile_scene rejects a metal with NaN fuzz (documented: 'NaN fuzz ..
     // an error in the caller's scene and must not render silently as some other material.
     check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<metal>(color(1, 1, 1), nan_d))),
                    "fuzz");
+}
+
+// Back-face culling: two parallel squares facing +z at z = -2 and z = -4 (each two triangles,
+// counter-clockwise seen from +z), and rays along -z and +z.
+namespace {
+
+std::shared_ptr<triangle_mesh> square_at(double z, std::shared_ptr<material> m) {
+    std::vector<point3> p = {point3(-1, -1, z), point3(1, -1, z), point3(1, 1, z), point3(-1, 1, z)};
+    std::vector<std::array<uint32_t, 3>> f = {{0, 1, 2}, {0, 2, 3}};
+    return std::make_shared<triangle_mesh>(p, f, m);
+}
+
+ray3f axis_ray(float z0, float dz) {
+    ray3f r;
+    r.origin = {0.25f, 0.1f, z0};
+    r.dir = {0, 0, dz};
+    r.tmin = 0;
+    r.tmax = std::numeric_limits<float>::infinity();
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("compile_scene: back-face culling skips back faces of the marked materials only") {
+    auto opaque = grey();
+    auto glass = std::make_shared<dielectric>(1.5);
+    hittable_list world;
+    world.add(square_at(-2, opaque));
+    world.add(square_at(-4, glass));
+    compiled_scene scene = compile_scene(world, point3(0, 0, 0));
+    const uint32_t opaque_index = scene.materials[0].kind == material_kind::lambertian ? 0 : 1;
+    scene.set_back_face_culling([&](uint32_t m) { return m == opaque_index; });
+
+    surface_hit hit;
+    // From +z looking down -z: the opaque square's front face, 2 away; culling changes nothing.
+    REQUIRE(scene.intersect_culling_back_faces(axis_ray(0, -1), hit));
+    CHECK(hit.t == doctest::Approx(2));
+    // From z = -6 looking up +z: the glass square's back face at distance 2 is kept (not marked),
+    REQUIRE(scene.intersect_culling_back_faces(axis_ray(-6, 1), hit));
+    CHECK(hit.t == doctest::Approx(2));
+    CHECK_FALSE(hit.front_face);
+    // and from z = -3 looking up +z, the opaque square's back face at distance 1 is skipped: the
+    // ray escapes, while the unculled query finds it.
+    CHECK_FALSE(scene.intersect_culling_back_faces(axis_ray(-3, 1), hit));
+    REQUIRE(scene.intersect(axis_ray(-3, 1), hit));
+    CHECK(hit.t == doctest::Approx(1));
+    // Shadow queries never cull.
+    CHECK(scene.occluded(axis_ray(-3, 1)));
+}
+
+TEST_CASE("compile_scene: back-face culling of spheres skips the exit point of a ray from inside") {
+    hittable_list world;
+    world.add(std::make_shared<sphere>(point3(0, 0, -5), 1, grey()));
+    compiled_scene scene = compile_scene(world, point3(0, 0, 0));
+    scene.set_back_face_culling([](uint32_t) { return true; });
+    surface_hit hit;
+    // The rays run parallel to the axis at (0.25, 0.1): the sphere's half-chord there is h.
+    const double h = std::sqrt(1 - 0.25 * 0.25 - 0.1 * 0.1);
+    REQUIRE(scene.intersect_culling_back_faces(axis_ray(0, -1), hit)); // from outside: the front
+    CHECK(hit.t == doctest::Approx(5 - h).epsilon(1e-6));
+    CHECK_FALSE(scene.intersect_culling_back_faces(axis_ray(-5, -1), hit)); // from the centre: culled
+    REQUIRE(scene.intersect(axis_ray(-5, -1), hit));
+    CHECK(hit.t == doctest::Approx(h).epsilon(1e-6));
+}
+
+TEST_CASE("compile_scene: smooth meshes interpolate their vertex normals barycentrically") {
+    // One triangle in the plane z = -2 with normals tilted differently at each corner.
+    auto mesh = std::make_shared<triangle_mesh>();
+    mesh->positions = {point3(-1, -1, -2), point3(3, -1, -2), point3(-1, 3, -2)};
+    mesh->faces = {{0, 1, 2}};
+    mesh->normals = {vec3(0, 0, 1), vec3(1, 0, 1), vec3(0, 1, 1)}; // unnormalised on purpose
+    mesh->face_normals = {{0, 1, 2}};
+    mesh->mat = grey();
+
+    hittable_list world;
+    world.add(mesh);
+    // Flat unless asked: the shading normal is the geometric one.
+    surface_hit hit;
+    ray3f r = axis_ray(0, -1); // hits (0.25, 0.1, -2)
+    REQUIRE(compile_scene(world, point3(0, 0, 0)).intersect(r, hit));
+    CHECK(hit.shading_normal.x == doctest::Approx(0));
+    CHECK(hit.shading_normal.z == doctest::Approx(1));
+
+    mesh->smooth_shading = true;
+    compiled_scene scene = compile_scene(world, point3(0, 0, 0));
+    REQUIRE(scene.intersect(r, hit));
+    // Barycentric weights of (0.25, 0.1) in the triangle (-1,-1), (3,-1), (-1,3):
+    // p = a + b1 (b - a) + b2 (c - a) gives b1 = (x + 1) / 4, b2 = (y + 1) / 4.
+    const double b1 = 1.25 / 4, b2 = 1.1 / 4, b0 = 1 - b1 - b2;
+    // Unit corner normals: (0,0,1), (1,0,1)/sqrt2, (0,1,1)/sqrt2, weighted and normalised.
+    const double s = 1 / std::sqrt(2.0);
+    double nx = b1 * s, ny = b2 * s, nz = b0 + b1 * s + b2 * s;
+    double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    CHECK(hit.shading_normal.x == doctest::Approx(nx / len).epsilon(1e-5));
+    CHECK(hit.shading_normal.y == doctest::Approx(ny / len).epsilon(1e-5));
+    CHECK(hit.shading_normal.z == doctest::Approx(nz / len).epsilon(1e-5));
+    CHECK(hit.normal.z == doctest::Approx(1)); // the geometric normal is unchanged
+    // Seen from behind, both normals face the ray.
+    REQUIRE(scene.intersect(axis_ray(-3, 1), hit));
+    CHECK(hit.normal.z == doctest::Approx(-1));
+    CHECK(hit.shading_normal.z == doctest::Approx(-nz / len).epsilon(1e-5));
 }

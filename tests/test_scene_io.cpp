@@ -274,3 +274,42 @@ TEST_CASE("load_scene: errors in a file carry the file's path and line") {
     std::error_code ec;
     fs::remove(path, ec);
 }
+
+TEST_CASE("parse_scene: conductor and glass materials (exact Fresnel)") {
+    scene_description s = parse("sphere 0 0 -1 0.5 conductor 1 0.8 0.5 0.2 3.5\n"
+                                "sphere 1 0 -1 0.5 glass 0 0.5 2 0 1.5\n"
+                                "triangle 0 0 0 1 0 0 0 1 0 conductor 1 1 1 1.5 0\n"
+                                "sphere 2 0 -1 0.5 dielectric 1 1 1 0 1.5\n");
+    REQUIRE(s.world.objects.size() == 4);
+    auto same = [](const color& a, const color& b) { return a.x() == b.x() && a.y() == b.y() && a.z() == b.z(); };
+    auto gold = std::dynamic_pointer_cast<conductor>(sphere_at(s, 0).mat());
+    REQUIRE(gold);
+    CHECK(same(gold->n(), color(0.2, 0.2, 0.2)));
+    CHECK(same(gold->k(), color(3.5, 3.5, 3.5)));
+    CHECK(same(gold->tint(), color(1, 0.8, 0.5)));
+    auto glass = std::dynamic_pointer_cast<dielectric>(sphere_at(s, 1).mat());
+    REQUIRE(glass);
+    CHECK(glass->exact_fresnel());
+    CHECK(glass->refraction_index() == 1.5);
+    CHECK(same(glass->absorption(), color(0, 0.5, 2)));
+    auto tri = std::dynamic_pointer_cast<triangle>(s.world.objects.at(2));
+    REQUIRE(tri);
+    REQUIRE(std::dynamic_pointer_cast<conductor>(tri->mat()));
+    // The book's dielectric keeps its meaning: Schlick, rgb ignored.
+    auto book = std::dynamic_pointer_cast<dielectric>(sphere_at(s, 3).mat());
+    REQUIRE(book);
+    CHECK(!book->exact_fresnel());
+}
+
+TEST_CASE("parse_scene: malformed conductor and glass lines are 'name:LINE: problem'") {
+    check_fails("sphere 0 0 -1 0.5 conductor 1 1 1 0 3\n", 1, {"conductor n", "positive", "got 0"});
+    check_fails("sphere 0 0 -1 0.5 conductor 1 1 1 -0.2 3\n", 1, {"conductor n", "positive", "-0.2"});
+    check_fails("sphere 0 0 -1 0.5 conductor 1 1 1 0.2 -3\n", 1, {"conductor k", "non-negative", "-3"});
+    check_fails("sphere 0 0 -1 0.5 conductor 1 -1 1 0.2 3\n", 1, {"conductor tint", "non-negative"});
+    check_fails("sphere 0 0 -1 0.5 conductor 1 1 1 n 3\n", 1, {"conductor n", "'n'", "not a number"});
+    check_fails("sphere 0 0 -1 0.5 conductor 1 1 1 0.2\n", 1, {"11 fields", "got 10"});
+    check_fails("sphere 0 0 -1 0.5 glass 0 0 0 0 0\n", 1, {"glass ior", "positive"});
+    check_fails("sphere 0 0 -1 0.5 glass 0 -0.5 0 0 1.5\n", 1, {"glass absorption", "non-negative"});
+    check_fails("sphere 0 0 -1 0.5 glass 0 0 inf 0 1.5\n", 1, {"'inf'", "finite"});
+    check_fails("sphere 0 0 -1 0.5 plastic 0.1 0.2 0.5 0 0\n", 1, {"glass", "conductor"});
+}

@@ -1,0 +1,598 @@
+#pragma once
+// xml_scene: reads a CENG795 / CENG477 XML scene (level 1, the recursive ray tracer) into a
+// whitted_scene. The format is described in shared/formats/ceng795-xml.md.
+//
+//   whitted_scene s = load_xml_scene("scenes/simple.xml");   // throws scene_error
+//   for (const view_camera& cam : s.cameras) ...              // one image per camera
+//
+// What it reads:
+//   <Scene>: BackgroundColor (default 0 0 0), ShadowRayEpsilon (1e-3), IntersectionTestEpsilon
+//     (1e-6), MaxRecursionDepth (0), ZeroBasedIndexing (true|false, default false: ids from 1);
+//   <Cameras>: <Camera> plain (Position, Gaze, Up, NearPlane l r b t [a 5th number is ignored],
+//     NearDistance, ImageResolution, ImageName) or type="lookAt" (GazePoint and FovY in degrees
+//     instead of Gaze and NearPlane: a symmetric image plane of aspect nx/ny at NearDistance);
+//   <Lights>: at most one <AmbientLight>, any number of <PointLight> (Position, Intensity);
+//   <Materials>: <Material id type="mirror|conductor|dielectric"> (no type: plain) with
+//     AmbientReflectance, DiffuseReflectance, SpecularReflectance, PhongExponent,
+//     MirrorReflectance, RefractionIndex (required by conductor and dielectric), AbsorptionIndex,
+//     AbsorptionCoefficient; each optional, defaulting as whitted_material does. One shared
+//     whitted_surface per material;
+//   <VertexData>: x y z triples;
+//   <Objects>: <Triangle> (Indices, Material): the single triangles of one material become one
+//     triangle_mesh; <Mesh shadingMode="smooth|flat"> (Material, <Faces vertexOffset="N"
+//     plyFile="path">; vertexOffset may also sit on <Mesh>): one triangle_mesh each, a plyFile read by load_ply relative to the XML
+//     file's folder (vertexOffset does not apply to it); smooth meshes get area-weighted vertex
+//     normals (set_smooth_normals below, replacing any normals of a PLY file); <Sphere> (Material,
+//     Center = a vertex id, Radius).
+// Zero-area triangles are kept (the renderer leaves them out). Numbers are whitespace-separated,
+// and a comment between numbers separates them. Elements may come in any order.
+//
+// Not read yet (later levels), and ignored without a word: transformations (<Transformations>,
+// <Translation>, ... and transformation children of objects), <MeshInstance>, textures and
+// <TexCoordData>, distribution-ray settings (NumSamples, ApertureSize, FocusDistance, Roughness,
+// MotionBlur), area, directional, spot and environment lights, BRDFs, light objects, tone mapping;
+// likewise any other element the list above does not name. <VertexData binaryFile> is refused.
+//
+// Errors: every problem is one scene_error "file:LINE: <Element id="N">: problem", e.g.
+//   scene.xml:14: <Sphere id="2">: <Material> 7 does not exist (the file defines materials 1-3)
+// for a missing or unreadable file, malformed XML (pugixml's description and line), no <Scene>
+// root, no camera, a missing required element, an element given twice, a value that is not a
+// finite number (or a whole number where one is needed) or has too few or too many numbers, a
+// negative colour, a non-positive radius, resolution, near distance or refraction index, a
+// degenerate camera (zero gaze, up parallel to gaze, empty image plane, FovY outside (0, 180)),
+// a material or vertex id that does not exist (after vertexOffset), a <Faces> list that is
+// empty or not a multiple of 3, and any problem of a PLY file (its own message follows).
+//
+// The XML is parsed by pugixml (Debian's libpugixml-dev), which the rtweekend CMake target links.
+
+#include "mesh.h"
+#include "ply.h"
+#include "scene_error.h"
+#include "sphere.h"
+#include "vec3.h"
+#include "whitted_scene.h"
+
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace rt {
+
+// Reads a CENG795 XML scene. Throws scene_error (see above).
+whitted_scene load_xml_scene(const std::string& path);
+
+// Gives `mesh` area-weighted vertex normals and turns on smooth shading: each vertex's normal is
+// the normalised sum of the (unnormalised, so area-weighted) cross products (b - a) x (c - a) of
+// the faces that use it. A vertex whose sum vanishes takes the normal of its largest face; one
+// used only by zero-area faces, or by none, gets (0, 0, 0). Replaces normals and face_normals.
+void set_smooth_normals(triangle_mesh& mesh);
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+inline void set_smooth_normals(triangle_mesh& mesh) {
+    const size_t n = mesh.positions.size();
+    std::vector<vec3> sum(n, vec3(0, 0, 0)), largest(n, vec3(0, 0, 0));
+    std::vector<double> magnitude(n, 0.0);
+    for (size_t i = 0; i < mesh.faces.size(); ++i)
+        for (uint32_t v : mesh.faces[i])
+            if (v >= n)
+                throw scene_error("set_smooth_normals: face " + std::to_string(i) + " uses vertex " + std::to_string(v) +
+                                  " but the mesh has " + std::to_string(n));
+    for (const auto& f : mesh.faces) {
+        const point3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
+        vec3 normal = cross(b - a, c - a);
+        for (uint32_t v : f) {
+            sum[v] += normal;
+            magnitude[v] += normal.length();
+            if (normal.length_squared() > largest[v].length_squared()) largest[v] = normal;
+        }
+    }
+    mesh.normals.assign(n, vec3(0, 0, 0));
+    for (size_t v = 0; v < n; ++v) {
+        double len = sum[v].length();
+        if (len > 1e-12 * magnitude[v] && len > 0) mesh.normals[v] = sum[v] / len;
+        else if (largest[v].length_squared() > 0) mesh.normals[v] = unit_vector(largest[v]);
+    }
+    mesh.face_normals = mesh.faces;
+    mesh.smooth_shading = true;
+}
+
+namespace detail {
+
+class xml_scene_reader {
+  public:
+    xml_scene_reader(const std::string& path, const std::string& text) : path_(path), text_(text) {
+        for (size_t i = 0; i < text_.size(); ++i)
+            if (text_[i] == '\n') newlines_.push_back(i);
+        dir_ = std::filesystem::path(path_).parent_path();
+    }
+
+    whitted_scene read() {
+        pugi::xml_parse_result parsed = doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default);
+        if (!parsed)
+            throw scene_error(path_ + ":" + std::to_string(line_at(parsed.offset)) +
+                              ": malformed XML: " + parsed.description());
+        pugi::xml_node root = doc_.document_element();
+        if (std::string(root.name()) != "Scene")
+            fail(root, "<" + std::string(root.name()) + ">", "the root element must be <Scene>");
+        whitted_scene scene;
+        read_settings(root, scene);
+        read_vertices(root);
+        read_materials(root);
+        read_cameras(root, scene);
+        read_lights(root, scene);
+        read_objects(root, scene);
+        if (scene.cameras.empty()) fail(root, "<Scene>", "no camera: a scene needs a <Camera> inside <Cameras>");
+        return scene;
+    }
+
+  private:
+    using node = pugi::xml_node;
+
+    // --- messages ---
+    size_t line_at(ptrdiff_t offset) const {
+        if (offset < 0) return 0;
+        return size_t(std::lower_bound(newlines_.begin(), newlines_.end(), size_t(offset)) - newlines_.begin()) + 1;
+    }
+    [[noreturn]] void fail(node at, const std::string& owner, const std::string& problem) const {
+        size_t line = at ? line_at(at.offset_debug()) : 0;
+        throw scene_error(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner + ": " + problem);
+    }
+    static std::string tag(node n) { return "<" + std::string(n.name()) + ">"; }
+    // <Name id="N">, or <Name> without an id.
+    static std::string describe(node n) {
+        pugi::xml_attribute id = n.attribute("id");
+        return id ? "<" + std::string(n.name()) + " id=\"" + id.value() + "\">" : tag(n);
+    }
+    static std::string lower(std::string s) {
+        for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    }
+    static std::string trim(const std::string& s) {
+        const char* space = " \t\r\n\v\f";
+        size_t b = s.find_first_not_of(space);
+        if (b == std::string::npos) return "";
+        return s.substr(b, s.find_last_not_of(space) - b + 1);
+    }
+    static std::string number_text(double x) {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+    }
+    // "1-3, 5, 7-9"
+    static std::string id_ranges(const std::vector<long long>& sorted) {
+        std::string out;
+        for (size_t i = 0; i < sorted.size();) {
+            size_t j = i;
+            while (j + 1 < sorted.size() && sorted[j + 1] == sorted[j] + 1) ++j;
+            if (!out.empty()) out += ", ";
+            out += std::to_string(sorted[i]);
+            if (j > i) out += "-" + std::to_string(sorted[j]);
+            i = j + 1;
+        }
+        return out;
+    }
+
+    // --- elements and values ---
+    // The one child `name` of `parent`: an error if it appears twice, or is required and absent.
+    node child(node parent, const char* name, bool required) const {
+        node found;
+        for (node c : parent.children(name)) {
+            if (found) fail(c, describe(parent), "<" + std::string(name) + "> appears twice");
+            found = c;
+        }
+        if (!found && required) fail(parent, describe(parent), "missing <" + std::string(name) + ">");
+        return found;
+    }
+    // The character data of an element: its text pieces (split by comments) joined by spaces.
+    std::string text(node el, const std::string& owner) const {
+        std::string out;
+        for (node c : el.children()) {
+            if (c.type() == pugi::node_pcdata || c.type() == pugi::node_cdata) {
+                out += c.value();
+                out += ' ';
+            } else if (c.type() == pugi::node_element) {
+                fail(c, owner, "unexpected element " + tag(c) + " inside " + tag(el));
+            }
+        }
+        return out;
+    }
+    static std::vector<std::string> words(const std::string& s) {
+        std::istringstream in(s);
+        std::vector<std::string> out;
+        for (std::string w; in >> w;) out.push_back(w);
+        return out;
+    }
+    double parse_number(const std::string& word, node el, const std::string& owner) const {
+        const char* b = word.data();
+        const char* e = b + word.size();
+        if (b != e && *b == '+') ++b;
+        double x = 0;
+        auto r = std::from_chars(b, e, x, std::chars_format::general);
+        if (b != e && r.ec == std::errc::result_out_of_range && r.ptr == e) x = HUGE_VAL; // beyond double
+        else if (b == e || r.ec != std::errc() || r.ptr != e)
+            fail(el, owner, tag(el) + ": '" + word + "' is not a number");
+        if (!std::isfinite(x)) fail(el, owner, tag(el) + ": '" + word + "' is not a finite number");
+        return x;
+    }
+    long long parse_integer(const std::string& word, node el, const std::string& owner) const {
+        const char* b = word.data();
+        const char* e = b + word.size();
+        if (b != e && *b == '+') ++b;
+        long long i = 0;
+        auto r = std::from_chars(b, e, i);
+        if (b == e || r.ec != std::errc() || r.ptr != e)
+            fail(el, owner, tag(el) + ": '" + word + "' is not a whole number");
+        return i;
+    }
+    std::vector<double> numbers(node el, const std::string& owner, size_t min_count, size_t max_count) const {
+        std::vector<double> out;
+        for (const std::string& w : words(text(el, owner))) out.push_back(parse_number(w, el, owner));
+        if (out.size() < min_count || out.size() > max_count) {
+            std::string expected = min_count == max_count
+                                       ? std::to_string(min_count)
+                                       : std::to_string(min_count) + " or " + std::to_string(max_count);
+            fail(el, owner, tag(el) + " has " + std::to_string(out.size()) + " number" + (out.size() == 1 ? "" : "s") +
+                                ", expected " + expected);
+        }
+        return out;
+    }
+    std::vector<long long> integers(node el, const std::string& owner) const {
+        std::vector<long long> out;
+        for (const std::string& w : words(text(el, owner))) out.push_back(parse_integer(w, el, owner));
+        return out;
+    }
+    long long integer(node el, const std::string& owner) const {
+        std::vector<long long> v = integers(el, owner);
+        if (v.size() != 1)
+            fail(el, owner, tag(el) + " has " + std::to_string(v.size()) + " numbers, expected 1");
+        return v[0];
+    }
+    double scalar(node el, const std::string& owner) const { return numbers(el, owner, 1, 1)[0]; }
+    vec3 triple(node el, const std::string& owner) const {
+        std::vector<double> v = numbers(el, owner, 3, 3);
+        return vec3(v[0], v[1], v[2]);
+    }
+    color colour(node el, const std::string& owner) const {
+        vec3 c = triple(el, owner);
+        if (c.x() < 0 || c.y() < 0 || c.z() < 0)
+            fail(el, owner, tag(el) + " must not be negative (" + number_text(c.x()) + " " + number_text(c.y()) + " " +
+                                number_text(c.z()) + ")");
+        return c;
+    }
+    // A required or optional number with a lower bound (`strict`: above it; otherwise at least it).
+    double bounded(node el, const std::string& owner, double bound, bool strict) const {
+        double x = scalar(el, owner);
+        if (strict ? !(x > bound) : !(x >= bound))
+            fail(el, owner,
+                 tag(el) + " must be " + (strict ? (bound == 0 ? "positive" : "greater than " + number_text(bound))
+                                                 : (bound == 0 ? "non-negative" : "at least " + number_text(bound))) +
+                     ", not " + number_text(x));
+        return x;
+    }
+    long long attribute_integer(node el, const char* name, long long fallback) const {
+        pugi::xml_attribute a = el.attribute(name);
+        if (!a) return fallback;
+        std::string w = trim(a.value());
+        const char* b = w.data();
+        const char* e = b + w.size();
+        if (b != e && *b == '+') ++b;
+        long long i = 0;
+        auto r = std::from_chars(b, e, i);
+        if (b == e || r.ec != std::errc() || r.ptr != e)
+            fail(el, describe(el), "attribute " + std::string(name) + "=\"" + a.value() + "\" is not a whole number");
+        return i;
+    }
+
+    // --- sections ---
+    void read_settings(node root, whitted_scene& scene) {
+        const std::string owner = "<Scene>";
+        if (node n = child(root, "BackgroundColor", false)) scene.background = colour(n, owner);
+        if (node n = child(root, "ShadowRayEpsilon", false)) scene.shadow_ray_epsilon = bounded(n, owner, 0, false);
+        if (node n = child(root, "IntersectionTestEpsilon", false))
+            scene.intersection_test_epsilon = bounded(n, owner, 0, false);
+        if (node n = child(root, "MaxRecursionDepth", false)) {
+            long long d = integer(n, owner);
+            if (d < 0 || d > 1000000) fail(n, owner, tag(n) + " must be between 0 and 1000000, not " + std::to_string(d));
+            scene.max_recursion_depth = int(d);
+        }
+        if (node n = child(root, "ZeroBasedIndexing", false)) {
+            std::string v = lower(trim(text(n, owner)));
+            if (v == "true" || v == "1") zero_based_ = true;
+            else if (v == "false" || v == "0") zero_based_ = false;
+            else fail(n, owner, tag(n) + " must be true or false, not '" + trim(text(n, owner)) + "'");
+        }
+    }
+
+    void read_vertices(node root) {
+        node data = child(root, "VertexData", false);
+        if (!data) return;
+        if (data.attribute("binaryFile"))
+            fail(data, "<VertexData>", "binaryFile vertex data is not supported yet");
+        std::vector<double> v = numbers(data, "<Scene>", 0, static_cast<size_t>(-1));
+        if (v.size() % 3 != 0)
+            fail(data, "<Scene>", "<VertexData> has " + std::to_string(v.size()) +
+                                      " numbers, not a multiple of 3 (x y z per vertex)");
+        for (size_t i = 0; i < v.size(); i += 3) vertices_.emplace_back(v[i], v[i + 1], v[i + 2]);
+    }
+
+    void read_materials(node root) {
+        for (node section : root.children("Materials"))
+            for (node m : section.children("Material")) {
+                const std::string owner = describe(m);
+                if (!m.attribute("id")) fail(m, owner, "missing attribute id");
+                long long id = attribute_integer(m, "id", 0);
+                if (materials_.count(id))
+                    fail(m, owner, "material id " + std::to_string(id) + " is defined twice (first on line " +
+                                       std::to_string(material_lines_[id]) + ")");
+                whitted_material p;
+                std::string type = lower(trim(m.attribute("type").value()));
+                using kind = whitted_material::kind_t;
+                if (type.empty()) p.kind = kind::plain;
+                else if (type == "mirror") p.kind = kind::mirror;
+                else if (type == "conductor") p.kind = kind::conductor;
+                else if (type == "dielectric") p.kind = kind::dielectric;
+                else
+                    fail(m, owner, "unknown material type '" + std::string(m.attribute("type").value()) +
+                                       "' (expected mirror, conductor or dielectric, or no type)");
+                if (node n = child(m, "AmbientReflectance", false)) p.ambient = colour(n, owner);
+                if (node n = child(m, "DiffuseReflectance", false)) p.diffuse = colour(n, owner);
+                if (node n = child(m, "SpecularReflectance", false)) p.specular = colour(n, owner);
+                if (node n = child(m, "PhongExponent", false)) p.phong_exponent = bounded(n, owner, 0, false);
+                if (node n = child(m, "MirrorReflectance", false)) p.mirror = colour(n, owner);
+                bool needs_index = p.kind == kind::conductor || p.kind == kind::dielectric;
+                if (node n = child(m, "RefractionIndex", needs_index)) p.refraction_index = bounded(n, owner, 0, true);
+                if (node n = child(m, "AbsorptionIndex", false)) p.absorption_index = bounded(n, owner, 0, false);
+                if (node n = child(m, "AbsorptionCoefficient", false)) p.absorption_coefficient = colour(n, owner);
+                materials_[id] = std::make_shared<whitted_surface>(p);
+                material_lines_[id] = line_at(m.offset_debug());
+            }
+    }
+
+    void read_cameras(node root, whitted_scene& scene) {
+        for (node section : root.children("Cameras"))
+            for (node c : section.children("Camera")) {
+                const std::string owner = describe(c);
+                view_camera cam;
+                std::string type = lower(trim(c.attribute("type").value()));
+                if (!type.empty() && type != "lookat")
+                    fail(c, owner, "unknown camera type '" + std::string(c.attribute("type").value()) +
+                                       "' (expected lookAt, or no type)");
+                cam.position = triple(child(c, "Position", true), owner);
+                node up = child(c, "Up", true);
+                cam.up = triple(up, owner);
+                if (cam.up.length_squared() == 0) fail(up, owner, "<Up> is the zero vector");
+                cam.near_distance = bounded(child(c, "NearDistance", true), owner, 0, true);
+                node res = child(c, "ImageResolution", true);
+                std::vector<long long> wh = integers(res, owner);
+                if (wh.size() != 2)
+                    fail(res, owner, "<ImageResolution> has " + std::to_string(wh.size()) + " numbers, expected 2");
+                if (wh[0] <= 0 || wh[1] <= 0 || wh[0] > 1000000 || wh[1] > 1000000)
+                    fail(res, owner, "<ImageResolution> " + std::to_string(wh[0]) + " " + std::to_string(wh[1]) +
+                                         ": width and height must be between 1 and 1000000");
+                cam.width = int(wh[0]);
+                cam.height = int(wh[1]);
+                node name = child(c, "ImageName", true);
+                cam.image_name = trim(text(name, owner));
+                if (cam.image_name.empty()) fail(name, owner, "<ImageName> is empty");
+                if (type.empty()) {
+                    node gaze = child(c, "Gaze", true);
+                    cam.gaze = triple(gaze, owner);
+                    if (cam.gaze.length_squared() == 0) fail(gaze, owner, "<Gaze> is the zero vector");
+                    node plane = child(c, "NearPlane", true);
+                    std::vector<double> lrbt = numbers(plane, owner, 4, 5); // a 5th number is ignored
+                    cam.left = lrbt[0];
+                    cam.right = lrbt[1];
+                    cam.bottom = lrbt[2];
+                    cam.top = lrbt[3];
+                    if (cam.left == cam.right || cam.bottom == cam.top)
+                        fail(plane, owner, "<NearPlane> has zero width or height");
+                } else {
+                    node at = child(c, "GazePoint", true);
+                    cam.gaze = triple(at, owner) - cam.position;
+                    if (cam.gaze.length_squared() == 0) fail(at, owner, "<GazePoint> is the camera's <Position>");
+                    node fov = child(c, "FovY", true);
+                    double fovy = scalar(fov, owner);
+                    if (!(fovy > 0 && fovy < 180))
+                        fail(fov, owner, "<FovY> must be between 0 and 180 degrees, not " + number_text(fovy));
+                    cam.top = cam.near_distance * std::tan(fovy * 3.14159265358979323846 / 360);
+                    cam.bottom = -cam.top;
+                    cam.right = cam.top * double(cam.width) / double(cam.height);
+                    cam.left = -cam.right;
+                }
+                if (cross(cam.up, cam.gaze).length_squared() == 0)
+                    fail(up, owner, "<Up> is parallel to the gaze direction");
+                scene.cameras.push_back(cam);
+            }
+    }
+
+    void read_lights(node root, whitted_scene& scene) {
+        node ambient;
+        for (node section : root.children("Lights")) {
+            for (node a : section.children("AmbientLight")) {
+                if (ambient) fail(a, "<Lights>", "<AmbientLight> appears twice");
+                ambient = a;
+                scene.ambient_light = colour(a, "<Lights>");
+            }
+            for (node l : section.children("PointLight")) {
+                const std::string owner = describe(l);
+                point_light light;
+                light.position = triple(child(l, "Position", true), owner);
+                light.intensity = colour(child(l, "Intensity", true), owner);
+                scene.lights.push_back(light);
+            }
+        }
+    }
+
+    std::shared_ptr<whitted_surface> material_of(node object, const std::string& owner) const {
+        node m = child(object, "Material", true);
+        long long id = integer(m, owner);
+        auto it = materials_.find(id);
+        if (it == materials_.end()) {
+            std::vector<long long> ids;
+            for (const auto& kv : materials_) ids.push_back(kv.first);
+            fail(m, owner, "<Material> " + std::to_string(id) + " does not exist (" +
+                               (ids.empty() ? "the file defines no materials" : "the file defines materials " + id_ranges(ids)) +
+                               ")");
+        }
+        return it->second;
+    }
+
+    // The 0-based index of vertex id `id` (as the file gives it, `offset` already added).
+    uint32_t vertex_index(long long id, node at, const std::string& owner, const std::string& what) const {
+        long long index = zero_based_ ? id : id - 1;
+        if (index < 0 || index >= (long long)vertices_.size()) {
+            long long first = zero_based_ ? 0 : 1;
+            std::string has = vertices_.empty() ? "the file has no <VertexData>"
+                                                : "the file defines vertices " + std::to_string(first) + "-" +
+                                                      std::to_string(first + (long long)vertices_.size() - 1);
+            fail(at, owner, what + " does not exist (" + has + ")");
+        }
+        return uint32_t(index);
+    }
+
+    void read_objects(node root, whitted_scene& scene) {
+        std::map<const whitted_surface*, std::shared_ptr<triangle_mesh>> single; // Triangles by material
+        std::vector<uint32_t> remap(vertices_.size(), triangle_mesh::no_index);
+        for (node section : root.children("Objects"))
+            for (node o : section.children()) {
+                if (o.type() != pugi::node_element) continue;
+                const std::string name = o.name(), owner = describe(o);
+                if (name == "Triangle") {
+                    auto mat = material_of(o, owner);
+                    node idx = child(o, "Indices", true);
+                    std::vector<long long> ids = integers(idx, owner);
+                    if (ids.size() != 3)
+                        fail(idx, owner, "<Indices> has " + std::to_string(ids.size()) + " numbers, expected 3");
+                    auto& mesh = single[mat.get()];
+                    if (!mesh) {
+                        mesh = std::make_shared<triangle_mesh>();
+                        mesh->mat = mat;
+                        scene.world.add(mesh);
+                    }
+                    auto first = uint32_t(mesh->positions.size());
+                    for (long long id : ids)
+                        mesh->positions.push_back(
+                            vertices_[vertex_index(id, idx, owner, "<Indices> vertex " + std::to_string(id))]);
+                    mesh->faces.push_back({first, first + 1, first + 2});
+                } else if (name == "Mesh") {
+                    scene.world.add(read_mesh(o, owner, remap));
+                } else if (name == "Sphere") {
+                    auto mat = material_of(o, owner);
+                    node center = child(o, "Center", true);
+                    long long id = integer(center, owner);
+                    point3 c = vertices_[vertex_index(id, center, owner, "<Center> vertex " + std::to_string(id))];
+                    double radius = bounded(child(o, "Radius", true), owner, 0, true);
+                    scene.world.add(std::make_shared<sphere>(c, radius, mat));
+                }
+                // Anything else (MeshInstance, light objects, ...) belongs to a later level.
+            }
+    }
+
+    std::shared_ptr<triangle_mesh> read_mesh(node o, const std::string& owner, std::vector<uint32_t>& remap) {
+        auto mat = material_of(o, owner);
+        std::string shading = lower(trim(o.attribute("shadingMode").value()));
+        if (!shading.empty() && shading != "smooth" && shading != "flat")
+            fail(o, owner, "unknown shadingMode '" + std::string(o.attribute("shadingMode").value()) +
+                               "' (expected smooth or flat)");
+        node faces = child(o, "Faces", true);
+        std::shared_ptr<triangle_mesh> mesh;
+        if (pugi::xml_attribute ply = faces.attribute("plyFile")) {
+            std::string file = trim(ply.value());
+            if (file.empty()) fail(faces, owner, "<Faces plyFile=\"\"> names no file");
+            if (!words(text(faces, owner)).empty())
+                fail(faces, owner, "<Faces> has both a plyFile and indices");
+            std::filesystem::path p(file);
+            std::string resolved = p.is_absolute() ? p.string() : (dir_ / p).string();
+            try {
+                mesh = load_ply(resolved, mat);
+            } catch (const scene_error& e) {
+                fail(faces, owner, "<Faces plyFile=\"" + file + "\">: " + e.what());
+            }
+        } else {
+            // The course's files put vertexOffset on <Faces>; a <Mesh vertexOffset> means the same.
+            if (o.attribute("vertexOffset") && faces.attribute("vertexOffset"))
+                fail(faces, owner, "vertexOffset is given on both <Mesh> and <Faces>");
+            long long offset = o.attribute("vertexOffset") ? attribute_integer(o, "vertexOffset", 0)
+                                                           : attribute_integer(faces, "vertexOffset", 0);
+            std::vector<long long> ids = integers(faces, owner);
+            if (ids.empty()) fail(faces, owner, "<Faces> is empty");
+            if (ids.size() % 3 != 0)
+                fail(faces, owner, "<Faces> has " + std::to_string(ids.size()) +
+                                       " vertex ids, not a multiple of 3 (three per triangle)");
+            mesh = std::make_shared<triangle_mesh>();
+            mesh->mat = mat;
+            // Only the vertices the mesh uses, in order of first use.
+            std::vector<uint32_t> used;
+            mesh->faces.reserve(ids.size() / 3);
+            for (size_t i = 0; i < ids.size(); i += 3) {
+                std::array<uint32_t, 3> f;
+                for (size_t k = 0; k < 3; ++k) {
+                    long long id = ids[i + k];
+                    std::string what = "<Faces> vertex " + std::to_string(id);
+                    if (offset != 0)
+                        what += " + vertexOffset " + std::to_string(offset) + " = " + std::to_string(id + offset);
+                    what += " (triangle " + std::to_string(i / 3 + 1) + ")";
+                    uint32_t v = vertex_index(id + offset, faces, owner, what);
+                    if (remap[v] == triangle_mesh::no_index) {
+                        remap[v] = uint32_t(used.size());
+                        used.push_back(v);
+                    }
+                    f[k] = remap[v];
+                }
+                mesh->faces.push_back(f);
+            }
+            mesh->positions.reserve(used.size());
+            for (uint32_t v : used) {
+                mesh->positions.push_back(vertices_[v]);
+                remap[v] = triangle_mesh::no_index;
+            }
+        }
+        if (shading == "smooth") set_smooth_normals(*mesh);
+        return mesh;
+    }
+
+    const std::string& path_;
+    const std::string& text_;
+    std::vector<size_t> newlines_;
+    std::filesystem::path dir_;
+    pugi::xml_document doc_;
+    bool zero_based_ = false;
+    std::vector<point3> vertices_;
+    std::map<long long, std::shared_ptr<whitted_surface>> materials_;
+    std::map<long long, size_t> material_lines_;
+};
+
+} // namespace detail
+
+inline whitted_scene load_xml_scene(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw scene_error(path + ": is a directory, not an XML scene file");
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw scene_error(path + ": cannot open XML scene file");
+    std::ostringstream contents;
+    contents << file.rdbuf();
+    if (file.bad()) throw scene_error(path + ": read error");
+    const std::string text = contents.str();
+    return detail::xml_scene_reader(path, text).read();
+}
+
+} // namespace rt
+
+#ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::load_xml_scene;
+using rt::set_smooth_normals;
+#endif
