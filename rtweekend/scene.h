@@ -115,7 +115,10 @@ class compiled_scene {
     };
     template <bool Spheres, bool Triangles, bool AnyHit, bool Cull = false>
     bool trace(const ray3f& r, float& tmax, hit_ref& best) const;
-    bool trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit, bool cull = false) const;
+    bool trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit) const;
+    // The same for closest hits with back faces culled: apart, so that only code that culls
+    // compiles these traversals.
+    bool trace_culling_back_faces(const ray3f& r, float& tmax, hit_ref& best) const;
     void fill_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const;
 };
 
@@ -549,14 +552,9 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best) const {
 }
 
 // Picks the traversal compiled for the primitive kinds this scene has.
-inline bool compiled_scene::trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit,
-                                              bool cull) const {
+inline bool compiled_scene::trace_any_feature(const ray3f& r, float& tmax, hit_ref& best, bool any_hit) const {
     const bool s = sphere_count > 0, t = triangle_count > 0;
-    if (cull) {
-        if (s && t) return trace<true, true, false, true>(r, tmax, best);
-        if (s) return trace<true, false, false, true>(r, tmax, best);
-        if (t) return trace<false, true, false, true>(r, tmax, best);
-    } else if (any_hit) {
+    if (any_hit) {
         if (s && t) return trace<true, true, true>(r, tmax, best);
         if (s) return trace<true, false, true>(r, tmax, best);
         if (t) return trace<false, true, true>(r, tmax, best);
@@ -565,6 +563,14 @@ inline bool compiled_scene::trace_any_feature(const ray3f& r, float& tmax, hit_r
         if (s) return trace<true, false, false>(r, tmax, best);
         if (t) return trace<false, true, false>(r, tmax, best);
     }
+    return false;
+}
+
+inline bool compiled_scene::trace_culling_back_faces(const ray3f& r, float& tmax, hit_ref& best) const {
+    const bool s = sphere_count > 0, t = triangle_count > 0;
+    if (s && t) return trace<true, true, false, true>(r, tmax, best);
+    if (s) return trace<true, false, false, true>(r, tmax, best);
+    if (t) return trace<false, true, false, true>(r, tmax, best);
     return false;
 }
 
@@ -617,7 +623,7 @@ inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface
     if (sphere_cull.empty() && triangle_cull.empty()) return intersect(r, hit);
     float t = r.tmax;
     hit_ref best;
-    bool found = trace_any_feature(r, t, best, false, true);
+    bool found = trace_culling_back_faces(r, t, best);
     if (found) fill_hit(r, t, best, hit);
     hit.custom_object = nullptr;
     return found; // user-written hittables are not culled

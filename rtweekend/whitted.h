@@ -103,6 +103,9 @@ inline whitted_shading make_whitted_shading(const whitted_material& w) {
         throw scene_error("absorption index must be finite and non-negative, got " + std::to_string(w.absorption_index));
     whitted_shading m;
     m.kind = w.kind;
+    // CENG477's files have no material types: a material with a MirrorReflectance is a mirror.
+    if (m.kind == whitted_material::kind_t::plain && (w.mirror.x() > 0 || w.mirror.y() > 0 || w.mirror.z() > 0))
+        m.kind = whitted_material::kind_t::mirror;
     m.ambient = vec3f(w.ambient);
     m.diffuse = vec3f(w.diffuse);
     m.specular = vec3f(w.specular);

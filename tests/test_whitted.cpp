@@ -546,3 +546,37 @@ TEST_CASE("whitted: a book-style lambertian sphere shades with kd = albedo") {
     CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
     CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
 }
+
+// CENG477's files give materials no type: a non-zero MirrorReflectance makes a mirror there.
+TEST_CASE("whitted: an untyped material with a MirrorReflectance reflects") {
+    auto quad = [](double z, bool facing_plus_z, const rt::whitted_material& m) {
+        auto mesh = std::make_shared<rt::triangle_mesh>();
+        mesh->positions = {rt::point3(-3, -3, z), rt::point3(3, -3, z), rt::point3(3, 3, z), rt::point3(-3, 3, z)};
+        mesh->faces = facing_plus_z ? std::vector<std::array<uint32_t, 3>>{{0, 1, 2}, {0, 2, 3}}
+                                    : std::vector<std::array<uint32_t, 3>>{{0, 2, 1}, {0, 3, 2}};
+        mesh->mat = std::make_shared<rt::whitted_surface>(m);
+        return mesh;
+    };
+    rt::whitted_material mirror; // no type given, as in CENG477
+    mirror.mirror = rt::color(0.5, 0.5, 0.5);
+    rt::whitted_material wall;
+    wall.ambient = rt::color(1, 0.5, 0.25);
+    rt::whitted_scene s;
+    s.ambient_light = rt::color(100, 100, 100);
+    s.max_recursion_depth = 1;
+    s.world.add(quad(-5, true, mirror)); // in front of the camera, facing it
+    s.world.add(quad(5, false, wall));   // behind the camera, facing it
+    rt::view_camera c;
+    c.width = c.height = 3;
+    c.left = c.bottom = -0.1;
+    c.right = c.top = 0.1;
+    c.image_name = "x.png";
+    s.cameras.push_back(c);
+    // Centre pixel: the ray along -z meets the mirror (own shading 0) and comes straight back
+    // along +z to the wall, which shows ambient only: 0.5 * 100 * (1, 0.5, 0.25) = (50, 25, 12.5).
+    std::vector<unsigned char> b = rt::encode_whitted_8bit(rt::render_whitted(s, 0).img);
+    const size_t centre = 3 * (1 * 3 + 1);
+    CHECK(std::abs(int(b[centre]) - 50) <= 1);
+    CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
+    CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
+}
