@@ -51,7 +51,7 @@ struct whitted_shading {
 };
 } // namespace detail
 
-// Compiles the scene once, then renders any of its cameras. The scene must outlive it.
+// Compiles the scene once, then renders any of its cameras.
 class whitted_renderer {
   public:
     explicit whitted_renderer(const whitted_scene& scene, const whitted_options& options = {});
@@ -65,7 +65,12 @@ class whitted_renderer {
     vec3f shade(const surface_hit& hit, const ray3f& r, const shading_material& m, uint64_t& rays) const;
     ray3f spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const;
 
-    const whitted_scene& scene_;
+    // What rendering needs of the scene besides its geometry, copied: the renderer does not
+    // depend on the whitted_scene staying alive.
+    std::vector<view_camera> cameras_;
+    vec3f background_, ambient_light_;
+    float shadow_ray_epsilon_ = 0;
+    int max_recursion_depth_ = 0;
     whitted_options options_;
     compiled_scene compiled_;
     std::vector<shading_material> materials_; // by compiled material index
@@ -155,13 +160,17 @@ inline vec3f exp_neg(const vec3f& v) { return {std::exp(-v.x), std::exp(-v.y), s
 } // namespace detail
 
 inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whitted_options& options)
-    : scene_(scene), options_(options),
+    : cameras_(scene.cameras), options_(options),
       compiled_(compile_scene(scene.world, scene.cameras.empty() ? point3(0, 0, 0) : scene.cameras[0].position)) {
     if (!std::isfinite(scene.shadow_ray_epsilon) || scene.shadow_ray_epsilon < 0)
         throw scene_error("shadow ray epsilon must be finite and non-negative");
     if (scene.max_recursion_depth < 0) throw scene_error("max recursion depth must be non-negative");
     detail::check_color(scene.background, "background colour");
     detail::check_color(scene.ambient_light, "ambient light");
+    background_ = vec3f(scene.background);
+    ambient_light_ = vec3f(scene.ambient_light);
+    shadow_ray_epsilon_ = float(scene.shadow_ray_epsilon);
+    max_recursion_depth_ = scene.max_recursion_depth;
     for (const material_desc& d : compiled_.materials) materials_.push_back(detail::make_whitted_shading(d));
     for (const point_light& l : scene.lights) {
         if (!detail::finite3(l.position)) throw scene_error("point light position must be finite");
@@ -177,7 +186,7 @@ inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whit
 // the hit point) to the side `side` of the surface.
 inline ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const {
     ray3f r;
-    r.origin = offset_ray_origin(hit.p, side) + (hit.offset + float(scene_.shadow_ray_epsilon)) * side;
+    r.origin = offset_ray_origin(hit.p, side) + (hit.offset + shadow_ray_epsilon_) * side;
     r.dir = dir;
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();
@@ -187,7 +196,7 @@ inline ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side, 
 // Ambient, plus diffuse and Blinn-Phong specular from every point light the point sees.
 inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, const shading_material& m,
                                      uint64_t& rays) const {
-    vec3f L = m.ambient * vec3f(scene_.ambient_light);
+    vec3f L = m.ambient * ambient_light_;
     if (lights_.empty()) return L;
     const vec3f n = hit.shading_normal, v = -r.dir;
     const ray3f base = spawn(hit, hit.normal, r.dir); // origin on the side the ray came from
@@ -220,7 +229,7 @@ inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, co
     ++rays;
     surface_hit hit;
     bool found = options_.cull_back_faces ? compiled_.intersect_culling_back_faces(r, hit) : compiled_.intersect(r, hit);
-    if (!found) return primary ? vec3f(scene_.background) : vec3f{0, 0, 0};
+    if (!found) return primary ? background_ : vec3f{0, 0, 0};
     const vec3f L = radiance(hit, r, depth, rays);
     return medium ? detail::exp_neg(hit.t * medium->absorption) * L : L;
 }
@@ -230,7 +239,7 @@ inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, co
 inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, uint64_t& rays) const {
     const shading_material& m = materials_[hit.material];
     vec3f L = shade(hit, r, m, rays);
-    if (depth >= scene_.max_recursion_depth || m.kind == whitted_material::kind_t::plain) return L;
+    if (depth >= max_recursion_depth_ || m.kind == whitted_material::kind_t::plain) return L;
 
     const vec3f n = hit.shading_normal;
     const float cos_i = std::fmin(1.0f, std::fmax(0.0f, -dot(r.dir, n)));
@@ -267,10 +276,10 @@ inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, 
 
 inline whitted_render whitted_renderer::render(size_t camera_index) const {
     auto start = std::chrono::steady_clock::now();
-    if (camera_index >= scene_.cameras.size())
+    if (camera_index >= cameras_.size())
         throw scene_error("camera " + std::to_string(camera_index) + " does not exist (the scene has " +
-                          std::to_string(scene_.cameras.size()) + ")");
-    const view_camera& c = scene_.cameras[camera_index];
+                          std::to_string(cameras_.size()) + ")");
+    const view_camera& c = cameras_[camera_index];
     if (c.width <= 0 || c.height <= 0)
         throw scene_error("image resolution must be positive, got " + std::to_string(c.width) + "x" +
                           std::to_string(c.height));
