@@ -237,7 +237,10 @@ inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, co
 // What leaves the hit point towards the ray's origin: local shading, then the mirror,
 // conductor or dielectric part while bounces remain.
 inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, uint64_t& rays) const {
-    const shading_material& m = materials_[hit.material];
+    // A user-written hittable reports its own material; built-in shapes index the table.
+    shading_material custom;
+    if (hit.custom_object) custom = detail::make_whitted_shading(compiled_.describe_material(hit.custom_record.mat.get()));
+    const shading_material& m = hit.custom_object ? custom : materials_[hit.material];
     vec3f L = shade(hit, r, m, rays);
     if (depth >= max_recursion_depth_ || m.kind == whitted_material::kind_t::plain) return L;
 

@@ -580,3 +580,34 @@ TEST_CASE("whitted: an untyped material with a MirrorReflectance reflects") {
     CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
     CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
 }
+
+// A user-written hittable renders in Whitted mode too, with the material it reports.
+namespace {
+class wrapped_sphere : public rt::hittable {
+  public:
+    explicit wrapped_sphere(std::shared_ptr<rt::material> m) : inner_(rt::point3(0, 0, -5), 1.0, std::move(m)) {}
+    bool hit(const rt::ray& r, rt::interval t, rt::hit_record& rec) const override { return inner_.hit(r, t, rec); }
+
+  private:
+    rt::sphere inner_;
+};
+} // namespace
+
+TEST_CASE("whitted: a user-written hittable is shaded with the material it reports") {
+    rt::whitted_material m;
+    m.diffuse = rt::color(0.5, 0.25, 0.125);
+    rt::whitted_scene s;
+    s.world.add(std::make_shared<wrapped_sphere>(std::make_shared<rt::whitted_surface>(m)));
+    s.lights.push_back({rt::point3(0, 0, 0), rt::color(1600, 1600, 1600)});
+    rt::view_camera c;
+    c.width = c.height = 3;
+    c.image_name = "x.png";
+    s.cameras.push_back(c);
+    // As for the built-in sphere: E = 1600 / 4^2 = 100 at (0, 0, -4), n.l = 1: (50, 25, 12.5).
+    std::vector<unsigned char> b = rt::encode_whitted_8bit(rt::render_whitted(s, 0).img);
+    const size_t centre = 3 * (1 * 3 + 1);
+    CHECK(std::abs(int(b[centre]) - 50) <= 1);
+    CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
+    CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
+    CHECK(int(b[0]) == 0); // a corner misses: the default black background
+}
