@@ -527,6 +527,29 @@ TEST_CASE("whitted: back-face culling does not change a closed opaque scene seen
     CHECK(std::unique(sorted.begin(), sorted.end()) - sorted.begin() > 50);
 }
 
+// The scenes below are built in code and seen by a 3x3 camera at the origin looking down -z,
+// its image plane [-half, half]^2 at distance 1; these render it and check the centre pixel.
+namespace {
+
+std::vector<unsigned char> render_3x3(rt::whitted_scene& s, double half = 1) {
+    rt::view_camera c;
+    c.width = c.height = 3;
+    c.left = c.bottom = -half;
+    c.right = c.top = half;
+    c.image_name = "x.png";
+    s.cameras.push_back(c);
+    return rt::encode_whitted_8bit(rt::render_whitted(s, 0).img);
+}
+
+void check_centre(const std::vector<unsigned char>& b, int r, int g, int bl) {
+    const size_t centre = 3 * (1 * 3 + 1);
+    CHECK(std::abs(int(b[centre]) - r) <= 1);
+    CHECK(std::abs(int(b[centre + 1]) - g) <= 1);
+    CHECK(std::abs(int(b[centre + 2]) - bl) <= 1);
+}
+
+} // namespace
+
 // The built-in path-tracer materials have Whitted equivalents, so a book-style world renders in
 // Whitted mode too: a Lambertian sphere is diffuse with kd = albedo.
 TEST_CASE("whitted: a book-style lambertian sphere shades with kd = albedo") {
@@ -534,17 +557,10 @@ TEST_CASE("whitted: a book-style lambertian sphere shades with kd = albedo") {
     s.world.add(std::make_shared<rt::sphere>(rt::point3(0, 0, -5), 1.0,
                                              std::make_shared<rt::lambertian>(rt::color(0.5, 0.25, 0.125))));
     s.lights.push_back({rt::point3(0, 0, 0), rt::color(1600, 1600, 1600)});
-    rt::view_camera c;
-    c.width = c.height = 3;
-    c.image_name = "x.png";
-    s.cameras.push_back(c);
     // Centre pixel: the ray along -z meets (0, 0, -4) head on; the light at the eye is 4 away,
     // E = 1600 / 16 = 100, n.l = 1: L = 100 * albedo = (50, 25, 12.5).
-    std::vector<unsigned char> b = rt::encode_whitted_8bit(rt::render_whitted(s, 0).img);
-    const size_t centre = 3 * (1 * 3 + 1);
-    CHECK(std::abs(int(b[centre]) - 50) <= 1);
-    CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
-    CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
+    std::vector<unsigned char> b = render_3x3(s);
+    check_centre(b, 50, 25, 12);
 }
 
 // CENG477's files give materials no type: a non-zero MirrorReflectance makes a mirror there.
@@ -566,19 +582,9 @@ TEST_CASE("whitted: an untyped material with a MirrorReflectance reflects") {
     s.max_recursion_depth = 1;
     s.world.add(quad(-5, true, mirror)); // in front of the camera, facing it
     s.world.add(quad(5, false, wall));   // behind the camera, facing it
-    rt::view_camera c;
-    c.width = c.height = 3;
-    c.left = c.bottom = -0.1;
-    c.right = c.top = 0.1;
-    c.image_name = "x.png";
-    s.cameras.push_back(c);
     // Centre pixel: the ray along -z meets the mirror (own shading 0) and comes straight back
     // along +z to the wall, which shows ambient only: 0.5 * 100 * (1, 0.5, 0.25) = (50, 25, 12.5).
-    std::vector<unsigned char> b = rt::encode_whitted_8bit(rt::render_whitted(s, 0).img);
-    const size_t centre = 3 * (1 * 3 + 1);
-    CHECK(std::abs(int(b[centre]) - 50) <= 1);
-    CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
-    CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
+    check_centre(render_3x3(s, 0.1), 50, 25, 12);
 }
 
 // A user-written hittable renders in Whitted mode too, with the material it reports.
@@ -599,15 +605,8 @@ TEST_CASE("whitted: a user-written hittable is shaded with the material it repor
     rt::whitted_scene s;
     s.world.add(std::make_shared<wrapped_sphere>(std::make_shared<rt::whitted_surface>(m)));
     s.lights.push_back({rt::point3(0, 0, 0), rt::color(1600, 1600, 1600)});
-    rt::view_camera c;
-    c.width = c.height = 3;
-    c.image_name = "x.png";
-    s.cameras.push_back(c);
     // As for the built-in sphere: E = 1600 / 4^2 = 100 at (0, 0, -4), n.l = 1: (50, 25, 12.5).
-    std::vector<unsigned char> b = rt::encode_whitted_8bit(rt::render_whitted(s, 0).img);
-    const size_t centre = 3 * (1 * 3 + 1);
-    CHECK(std::abs(int(b[centre]) - 50) <= 1);
-    CHECK(std::abs(int(b[centre + 1]) - 25) <= 1);
-    CHECK(std::abs(int(b[centre + 2]) - 12) <= 1);
+    std::vector<unsigned char> b = render_3x3(s);
+    check_centre(b, 50, 25, 12);
     CHECK(int(b[0]) == 0); // a corner misses: the default black background
 }
