@@ -5,7 +5,7 @@
 // and one "app: error: ..." line with exit status 1 for bad input, 2 for bad usage.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/image.h>
+#include <rtweekend/io/image_write.h>
 #include <rtweekend/scene_error.h>
 
 #include <cctype>

@@ -29,14 +29,15 @@
 
 #include "plot_svg.h"
 
-#include <rtweekend/image_read.h>
+#include <rtweekend/io/image_read.h>
+#include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/metrics.h>
-#include <rtweekend/ray_file.h>
-#include <rtweekend/render.h>
-#include <rtweekend/rng.h>
-#include <rtweekend/scene.h>
-#include <rtweekend/scene_io.h>
+#include <rtweekend/measure/metrics.h>
+#include <rtweekend/io/ray_file.h>
+#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/engine/rng.h>
+#include <rtweekend/engine/compiled_scene.h>
+#include <rtweekend/io/scene_file.h>
 
 #include <sys/resource.h>
 
@@ -500,7 +501,7 @@ void bench_error(const bench_options& o) {
                     p.seconds, double(p.rays) * 1e-6, double(p.samples) / pixels, p.linear.rmse, p.linear.rel_mse,
                     p.linear.bias[0], p.linear.bias[1], p.linear.bias[2], p.display.rmse);
     }
-    if (!o.csv.empty()) rt::detail::write_file_atomically(o.csv, csv);
+    if (!o.csv.empty()) rt::write_file_atomically(o.csv, csv);
 
     // Adaptive against uniform: the rays and the time uniform sampling needs to reach each
     // adaptive image's error (interpolated on its curve), in RMSE and in relMSE.
@@ -569,7 +570,7 @@ void bench_error(const bench_options& o) {
                    (threads == 1 ? "" : "s") + ")";
         po.x_label = "wall-clock seconds";
         po.y_label = "RMSE against the 6144-spp reference (8-bit, gamma 2)";
-        rt::detail::write_file_atomically(o.plot, app::render_loglog_svg(series, po));
+        rt::write_file_atomically(o.plot, app::render_loglog_svg(series, po));
     }
 }
 

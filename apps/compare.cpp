@@ -1,4 +1,4 @@
-// compare: how far an image is from a reference (metrics: rtweekend/metrics.h).
+// compare: how far an image is from a reference (metrics: rtweekend/measure/metrics.h).
 //
 //   compare render.pfm reference.pfm     linear and 8-bit metrics
 //   compare render.png reference.pfm     8-bit metrics (the PFM is encoded as our writers do)
@@ -10,8 +10,8 @@
 
 #include "app_options.h"
 
-#include <rtweekend/image_read.h>
-#include <rtweekend/metrics.h>
+#include <rtweekend/io/image_read.h>
+#include <rtweekend/measure/metrics.h>
 
 #include <cstdio>
 #include <iostream>

@@ -21,7 +21,7 @@
 #include "loop_subdivision.h"
 #include "ray_workload.h"
 
-#include <rtweekend/ray_file.h>
+#include <rtweekend/io/ray_file.h>
 #include <rtweekend/scene_error.h>
 
 #include <embree3/rtcore.h>
@@ -123,17 +123,6 @@ arguments parse(int argc, char** argv) {
     if (!a.make_rays.empty() && runs_given) usage_error("--runs goes with --rays, not --make-rays");
     if (!a.rays.empty() && size_given) usage_error("--size goes with --make-rays, not --rays");
     return a;
-}
-
-// Refuses an output path that cannot be written before the work, not after it.
-void check_writable(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw rt::scene_error("cannot write '" + path + "': it is a directory");
-    std::string probe = rt::detail::temporary_name(path);
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw rt::scene_error("cannot write '" + path + "': " + std::strerror(errno));
-    std::fclose(f);
-    std::remove(probe.c_str());
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -334,7 +323,7 @@ int main(int argc, char** argv) {
     const arguments a = parse(argc, argv);
     try {
         if (!a.make_rays.empty())
-            for (const char* part : {".primary.rays", ".diffuse.rays", ".shadow.rays"}) check_writable(a.make_rays + part);
+            for (const char* part : {".primary.rays", ".diffuse.rays", ".shadow.rays"}) rt::check_writable(a.make_rays + part);
         // Every input is read and checked before the build, which takes seconds for big meshes.
         std::vector<rt::ray_batch> batches;
         for (const std::string& path : a.rays) batches.push_back(rt::read_rays(path));

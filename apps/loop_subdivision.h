@@ -33,7 +33,8 @@
 // touch (all its edges interior) is accepted and treated as one vertex of valence n, the sum of
 // both fans' neighbours. Zero-area triangles with three distinct indices are fine.
 
-#include <rtweekend/image.h> // rt::detail::write_file_atomically
+#include <rtweekend/io/file.h>
+#include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
 #include <rtweekend/scene_error.h>
 #include <rtweekend/vec3.h>
@@ -260,7 +261,7 @@ inline std::string encode_obj(const tri_mesh& m, const std::string& comment = ""
 }
 
 inline void write_obj(const std::string& path, const tri_mesh& m, const std::string& comment = "") {
-    rt::detail::write_file_atomically(path, encode_obj(m, comment));
+    rt::write_file_atomically(path, encode_obj(m, comment));
 }
 
 } // namespace app

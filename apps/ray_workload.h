@@ -34,12 +34,12 @@
 // non-finite normal) throws rt::scene_error rather than producing a subtly different workload.
 
 #include <rtweekend/constants.h>
-#include <rtweekend/ray_file.h>
-#include <rtweekend/rng.h>
-#include <rtweekend/sampling.h>
+#include <rtweekend/io/ray_file.h>
+#include <rtweekend/engine/rng.h>
+#include <rtweekend/engine/sampling.h>
 #include <rtweekend/scene_error.h>
 #include <rtweekend/vec3.h>
-#include <rtweekend/vec3f.h>
+#include <rtweekend/engine/vec3f.h>
 
 #include <cmath>
 #include <cstddef>

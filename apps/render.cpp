@@ -9,10 +9,10 @@
 
 #include "app_options.h"
 
-#include <rtweekend/render.h>
-#include <rtweekend/scene_io.h>
-#include <rtweekend/whitted.h>
-#include <rtweekend/xml_scene.h>
+#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/io/scene_file.h>
+#include <rtweekend/engine/whitted.h>
+#include <rtweekend/io/xml_scene.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -41,7 +41,7 @@ std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std:
         if (name.empty())
             throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + " has no <ImageName>");
         std::string path = (dir / name).lexically_normal().string();
-        std::string ext = rt::detail::lowercase_extension(path);
+        std::string ext = rt::lowercase_extension(path);
         if (ext != ".png" && ext != ".ppm")
             throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +
                                   "' must end in .png or .ppm");

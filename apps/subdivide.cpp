@@ -11,8 +11,9 @@
 
 #include "loop_subdivision.h"
 
-#include <rtweekend/image.h>
-#include <rtweekend/ply.h>
+#include <rtweekend/io/file.h>
+#include <rtweekend/io/obj.h>
+#include <rtweekend/io/ply.h>
 
 #include <cerrno>
 #include <chrono>
@@ -89,17 +90,6 @@ arguments parse(int argc, char** argv) {
     return a;
 }
 
-// Refuses an output path that cannot be written before the work, not after it.
-void check_writable(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw rt::scene_error("cannot write '" + path + "': it is a directory");
-    std::string probe = rt::detail::temporary_name(path);
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw rt::scene_error("cannot write '" + path + "': " + std::strerror(errno));
-    std::fclose(f);
-    std::remove(probe.c_str());
-}
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -109,7 +99,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 int main(int argc, char** argv) {
     const arguments a = parse(argc, argv);
     try {
-        check_writable(a.output);
+        rt::check_writable(a.output);
         auto t0 = std::chrono::steady_clock::now();
         app::tri_mesh in = app::read_obj(a.input);
         double read_s = seconds_since(t0);
@@ -124,7 +114,7 @@ int main(int argc, char** argv) {
         double subdivide_s = seconds_since(t1);
 
         auto t2 = std::chrono::steady_clock::now();
-        if (rt::detail::lowercase_extension(a.output) == ".ply") {
+        if (rt::lowercase_extension(a.output) == ".ply") {
             rt::triangle_mesh mesh(out.positions, out.triangles, nullptr);
             rt::write_ply(a.output, mesh, /*binary=*/true);
         } else {

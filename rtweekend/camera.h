@@ -12,10 +12,10 @@
 
 #include "scene_error.h"
 #include "hittable.h"
-#include "image.h"
-#include "sampling.h"
+#include "io/image_write.h"
+#include "engine/sampling.h"
 #include "vec3.h"
-#include "vec3f.h"
+#include "engine/vec3f.h"
 
 #include <cmath>
 #include <cstdint>
@@ -209,4 +209,4 @@ using rt::camera;
 #endif
 
 // The render loop and camera::render's definitions (render.h includes this header first).
-#include "render.h"
+#include "engine/path_tracer.h"

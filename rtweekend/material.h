@@ -16,7 +16,7 @@
 // user-written shapes, and a user's own material subclass is rendered through it.
 
 #include "color.h"
-#include "fresnel.h"
+#include "engine/fresnel.h"
 #include "hittable.h"
 #include "ray.h"
 

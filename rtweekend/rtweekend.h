@@ -6,7 +6,7 @@
 
 // The teaching surface, in the book's order.
 #include "constants.h"
-#include "rng.h"
+#include "engine/rng.h"
 #include "vec3.h"
 #include "color.h"
 #include "ray.h"
@@ -20,21 +20,24 @@
 #include "mesh.h"
 
 // The engine underneath, and files.
-#include "bsdf.h"
-#include "bvh.h"
-#include "fresnel.h"
-#include "image.h"
-#include "ply.h"
-#include "ray_offset.h"
-#include "render.h"
-#include "sampling.h"
-#include "scene.h"
+#include "engine/bsdf.h"
+#include "engine/bvh.h"
+#include "engine/fresnel.h"
+#include "engine/image.h"
+#include "io/file.h"
+#include "io/image_write.h"
+#include "io/obj.h"
+#include "io/ply.h"
+#include "engine/ray_offset.h"
+#include "engine/path_tracer.h"
+#include "engine/sampling.h"
+#include "engine/compiled_scene.h"
 #include "scene_error.h"
-#include "scene_io.h"
-#include "simd.h"
-#include "vec3f.h"
-#include "whitted.h"
-#include "xml_scene.h"
+#include "io/scene_file.h"
+#include "engine/simd.h"
+#include "engine/vec3f.h"
+#include "engine/whitted.h"
+#include "io/xml_scene.h"
 
 #include <cmath>
 #include <iostream>

@@ -12,7 +12,7 @@
 // triangle_edge_functions in double when a ray passes exactly through an edge.
 
 #include "hittable.h"
-#include "simd.h"
+#include "engine/simd.h"
 
 #include <cmath>
 #include <memory>

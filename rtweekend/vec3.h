@@ -5,7 +5,7 @@
 // scene far from the origin keeps its precision.
 
 #include "constants.h"
-#include "rng.h"
+#include "engine/rng.h"
 
 #include <cmath>
 #include <iostream>

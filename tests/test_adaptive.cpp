@@ -1,4 +1,4 @@
-// Adaptive sampling (camera::adaptive_error, rtweekend/adaptive.h): pixels whose neighbourhood is
+// Adaptive sampling (camera::adaptive_error, rtweekend/measure/adaptive.h): pixels whose neighbourhood is
 // calm stop at the minimum; noisy ones go on, in proportion to their noise (Neyman); the image
 // stays unbiased and deterministic, and samples_saved counts what was not taken.
 //
@@ -7,7 +7,7 @@
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
-#include <rtweekend/render.h>
+#include <rtweekend/engine/path_tracer.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>

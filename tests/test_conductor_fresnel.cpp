@@ -1,4 +1,4 @@
-// The exact Fresnel equations (rtweekend/fresnel.h) and the two materials built on them:
+// The exact Fresnel equations (rtweekend/engine/fresnel.h) and the two materials built on them:
 // conductor(n, k, tint) and the absorbing, exact-Fresnel dielectric(ior, absorption).
 //
 // Reference values are worked out by hand in the comments (closed forms where the angles allow

@@ -4,7 +4,7 @@
 
 #include "cover_scene.h"
 
-#include <rtweekend/scene_io.h>
+#include <rtweekend/io/scene_file.h>
 
 #include <doctest/doctest.h>
 

@@ -2,10 +2,11 @@
 // format's `mesh` line, and rendering a mesh (furnace: no self-intersection, far from the origin).
 
 #include <rtweekend/material.h>
+#include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/render.h>
-#include <rtweekend/scene.h>
-#include <rtweekend/scene_io.h>
+#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/engine/compiled_scene.h>
+#include <rtweekend/io/scene_file.h>
 
 #include <doctest/doctest.h>
 

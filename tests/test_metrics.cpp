@@ -1,7 +1,7 @@
-// Error metrics (rtweekend/metrics.h) on tiny images whose figures are worked out by hand, the
+// Error metrics (rtweekend/measure/metrics.h) on tiny images whose figures are worked out by hand, the
 // 8-bit path through the book's encoding, NaN/Inf handling and size checks.
 
-#include <rtweekend/metrics.h>
+#include <rtweekend/measure/metrics.h>
 
 #include <doctest/doctest.h>
 

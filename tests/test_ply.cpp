@@ -1,8 +1,8 @@
-// Stanford PLY meshes (rtweekend/ply.h): ASCII and binary reading, skipped elements and
+// Stanford PLY meshes (rtweekend/io/ply.h): ASCII and binary reading, skipped elements and
 // properties of every type, write_ply round trips, and one error message per kind of bad input.
 
 #include <rtweekend/material.h>
-#include <rtweekend/ply.h>
+#include <rtweekend/io/ply.h>
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
-// Ray files (rtweekend/ray_file.h): a file built byte by byte from the format table, round trips
+// Ray files (rtweekend/io/ray_file.h): a file built byte by byte from the format table, round trips
 // through disk, and one scene_error per kind of malformed file, each naming the file.
 
-#include <rtweekend/ray_file.h>
+#include <rtweekend/io/ray_file.h>
 
 #include <doctest/doctest.h>
 

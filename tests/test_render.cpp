@@ -1,4 +1,4 @@
-// The renderer (rtweekend/render.h): determinism across thread counts, analytic "furnace" images,
+// The renderer (rtweekend/engine/path_tracer.h): determinism across thread counts, analytic "furnace" images,
 // exact ray counts, user-written shapes and materials through the book's virtual interfaces, and
 // the user shader path camera::render_image(world, ray_color).
 //

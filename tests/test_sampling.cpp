@@ -1,10 +1,10 @@
-// Sampling warps (rtweekend/sampling.h): uniform sphere, uniform disk, cosine hemisphere.
+// Sampling warps (rtweekend/engine/sampling.h): uniform sphere, uniform disk, cosine hemisphere.
 //
 // Moments are checked on a stratified grid of (u1, u2) (midpoints of an n x n grid), where the
 // sample mean approximates the integral deterministically with error O(1/n^2) for smooth
 // integrands, so tight tolerances are safe.
 
-#include <rtweekend/sampling.h>
+#include <rtweekend/engine/sampling.h>
 
 #include <doctest/doctest.h>
 

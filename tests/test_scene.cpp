@@ -1,11 +1,11 @@
-// compile_scene (rtweekend/scene.h): what the renderer builds from the book's world, and the
+// compile_scene (rtweekend/engine/compiled_scene.h): what the renderer builds from the book's world, and the
 // invalid input it must reject with scene_error.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/render.h>
-#include <rtweekend/scene.h>
+#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/engine/compiled_scene.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>

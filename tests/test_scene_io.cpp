@@ -1,7 +1,7 @@
-// Scene files (rtweekend/scene_io.h): the cover scene file, and one scene_error per kind of
+// Scene files (rtweekend/io/scene_file.h): the cover scene file, and one scene_error per kind of
 // malformed line, each "name:LINE: problem".
 
-#include <rtweekend/scene_io.h>
+#include <rtweekend/io/scene_file.h>
 
 #include <doctest/doctest.h>
 

@@ -1,12 +1,12 @@
 // Ray-sphere intersection: sphere::hit (the book's double API, rtweekend/sphere.h), sphere_roots,
-// and the renderer's float closest-hit query compiled_scene::intersect (rtweekend/scene.h).
+// and the renderer's float closest-hit query compiled_scene::intersect (rtweekend/engine/compiled_scene.h).
 //
 // Reference values are analytic (worked out in the comments) or come from the textbook quadratic
 // formula evaluated in long double.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
-#include <rtweekend/scene.h>
+#include <rtweekend/engine/compiled_scene.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>

@@ -112,7 +112,7 @@ TEST_CASE("chi2 helper: incomplete gamma special cases and published critical va
 }
 
 // ================================================================================================
-// Direction and point samplers (rtweekend/sampling.h)
+// Direction and point samplers (rtweekend/engine/sampling.h)
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/rng.h>
-#include <rtweekend/sampling.h>
-#include <rtweekend/scene.h>
+#include <rtweekend/engine/rng.h>
+#include <rtweekend/engine/sampling.h>
+#include <rtweekend/engine/compiled_scene.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/triangle.h>
 

@@ -1,10 +1,10 @@
-// CENG795 XML scenes (rtweekend/xml_scene.h): every level-1 element, cameras, ids and offsets,
+// CENG795 XML scenes (rtweekend/io/xml_scene.h): every level-1 element, cameras, ids and offsets,
 // smooth normals, layout independence (comments, CRLF, one line), and one error per kind of bad
 // input, each naming the file, the element and the problem.
 
 #include <rtweekend/mesh.h>
 #include <rtweekend/sphere.h>
-#include <rtweekend/xml_scene.h>
+#include <rtweekend/io/xml_scene.h>
 
 #include <doctest/doctest.h>
 

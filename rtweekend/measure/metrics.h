@@ -29,9 +29,9 @@
 //
 // Images of different sizes, or empty ones, throw scene_error naming both sizes.
 
-#include "image.h"
-#include "image_read.h"
-#include "scene_error.h"
+#include "../io/image_write.h"
+#include "../io/image_read.h"
+#include "../scene_error.h"
 
 #include <cmath>
 #include <cstddef>

@@ -45,12 +45,14 @@
 //
 // The XML is parsed by pugixml (Debian's libpugixml-dev), which the rtweekend CMake target links.
 
-#include "mesh.h"
+#include "../mesh.h"
+#include "../scene_error.h"
+#include "../sphere.h"
+#include "../vec3.h"
+#include "../whitted_scene.h"
+#include "file.h"
 #include "ply.h"
-#include "scene_error.h"
-#include "sphere.h"
-#include "vec3.h"
-#include "whitted_scene.h"
+#include "text_lines.h"
 
 #include <pugixml.hpp>
 
@@ -61,7 +63,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -114,9 +115,7 @@ namespace detail {
 
 class xml_scene_reader {
   public:
-    xml_scene_reader(const std::string& path, const std::string& text) : path_(path), text_(text) {
-        for (size_t i = 0; i < text_.size(); ++i)
-            if (text_[i] == '\n') newlines_.push_back(i);
+    xml_scene_reader(const std::string& path, const std::string& text) : path_(path), text_(text), lines_(text_) {
         dir_ = std::filesystem::path(path_).parent_path();
     }
 
@@ -143,10 +142,7 @@ class xml_scene_reader {
     using node = pugi::xml_node;
 
     // --- messages ---
-    size_t line_at(ptrdiff_t offset) const {
-        if (offset < 0) return 0;
-        return size_t(std::lower_bound(newlines_.begin(), newlines_.end(), size_t(offset)) - newlines_.begin()) + 1;
-    }
+    size_t line_at(ptrdiff_t offset) const { return offset < 0 ? 0 : lines_.line_of(size_t(offset)); }
     [[noreturn]] void fail(node at, const std::string& owner, const std::string& problem) const {
         size_t line = at ? line_at(at.offset_debug()) : 0;
         throw scene_error(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner + ": " + problem);
@@ -567,7 +563,7 @@ class xml_scene_reader {
 
     const std::string& path_;
     const std::string& text_;
-    std::vector<size_t> newlines_;
+    line_index lines_;
     std::filesystem::path dir_;
     pugi::xml_document doc_;
     bool zero_based_ = false;
@@ -579,14 +575,7 @@ class xml_scene_reader {
 } // namespace detail
 
 inline whitted_scene load_xml_scene(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw scene_error(path + ": is a directory, not an XML scene file");
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw scene_error(path + ": cannot open XML scene file");
-    std::ostringstream contents;
-    contents << file.rdbuf();
-    if (file.bad()) throw scene_error(path + ": read error");
-    const std::string text = contents.str();
+    const std::string text = read_file(path, "XML scene file");
     return detail::xml_scene_reader(path, text).read();
 }
 

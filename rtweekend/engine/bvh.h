@@ -19,7 +19,7 @@
 //
 // A scene of a few primitives gets no nodes at all: its root is a single leaf.
 
-#include "scene_error.h"
+#include "../scene_error.h"
 #include "vec3f.h"
 
 #include <algorithm>

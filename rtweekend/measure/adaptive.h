@@ -42,7 +42,7 @@
 //     Carlo rendering", Computer Graphics Forum 34(2), 2015 (STAR): error estimates filtered
 //     over image neighbourhoods.
 
-#include "vec3f.h"
+#include "../engine/vec3f.h"
 
 #include <algorithm>
 #include <cmath>

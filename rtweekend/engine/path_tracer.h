@@ -10,12 +10,12 @@
 // that comes out NaN or infinite is dropped and counted; the count is reported. Progress and the
 // final statistics (rays, seconds, Mrays/s) go to stderr unless cam.quiet is set.
 
-#include "adaptive.h"
-#include "camera.h"
-#include "image.h"
+#include "../measure/adaptive.h"
+#include "../camera.h"
+#include "../io/image_write.h"
 #include "ray_offset.h"
 #include "rng.h"
-#include "scene.h"
+#include "compiled_scene.h"
 
 #include <algorithm>
 #include <atomic>

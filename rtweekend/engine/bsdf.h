@@ -8,7 +8,7 @@
 // knows the distance travelled: render.h, trace_path).
 
 #include "fresnel.h"
-#include "material.h"
+#include "../material.h"
 #include "rng.h"
 #include "sampling.h"
 #include "vec3f.h"

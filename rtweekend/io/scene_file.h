@@ -22,14 +22,15 @@
 //                                Fresnel and Beer's law, dielectric(ior, absorption)
 //   conductor r g b n k          tint and complex index n + ik: conductor(n, k, tint)
 
-#include "camera.h"
-#include "hittable_list.h"
-#include "material.h"
-#include "mesh.h"
+#include "../camera.h"
+#include "../hittable_list.h"
+#include "../material.h"
+#include "../mesh.h"
+#include "obj.h"
 #include "ply.h"
-#include "scene_error.h"
-#include "sphere.h"
-#include "triangle.h"
+#include "../scene_error.h"
+#include "../sphere.h"
+#include "../triangle.h"
 
 #include <cctype>
 #include <cerrno>
@@ -37,7 +38,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <istream>
 #include <memory>
 #include <sstream>
@@ -241,8 +241,7 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
 }
 
 inline scene_description load_scene(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw scene_error(path + ": cannot open scene file: " + std::strerror(errno));
+    std::istringstream in(read_file(path, "scene file"));
     return parse_scene(in, path);
 }
 

@@ -26,8 +26,9 @@
 // stb_image into every program: a program that includes them and then compiles its own
 // stb_image (as book 2's rtw_stb_image.h does) still builds.
 
-#include "image.h"
-#include "scene_error.h"
+#include "../engine/image.h"
+#include "../scene_error.h"
+#include "file.h"
 
 #include <cerrno>
 #include <cmath>
@@ -35,7 +36,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -362,19 +362,7 @@ inline loaded_image decode_image(const std::string& bytes, const std::string& na
 }
 
 inline loaded_image read_image(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) detail::read_error(path, "it is a directory");
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) detail::read_error(path, std::strerror(errno));
-    std::string bytes;
-    char buffer[1 << 16];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) bytes.append(buffer, n);
-    bool failed = std::ferror(f) != 0;
-    int saved_errno = errno;
-    std::fclose(f);
-    if (failed) detail::read_error(path, std::strerror(saved_errno ? saved_errno : EIO));
-    return decode_image(bytes, path);
+    return decode_image(read_file(path, "image file"), path);
 }
 
 } // namespace rt

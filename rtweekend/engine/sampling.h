@@ -3,7 +3,7 @@
 // takes its uniforms explicitly, so the chi-square tests can drive it and the render loop can
 // feed it from any generator.
 
-#include "constants.h"
+#include "../constants.h"
 #include "vec3f.h"
 
 #include <cmath>

@@ -23,14 +23,14 @@
 
 #include "bsdf.h"
 #include "bvh.h"
-#include "hittable.h"
-#include "hittable_list.h"
-#include "material.h"
-#include "mesh.h"
-#include "scene_error.h"
+#include "../hittable.h"
+#include "../hittable_list.h"
+#include "../material.h"
+#include "../mesh.h"
+#include "../scene_error.h"
 #include "simd.h"
-#include "sphere.h"
-#include "triangle.h"
+#include "../sphere.h"
+#include "../triangle.h"
 #include "vec3f.h"
 
 #include <array>

@@ -2,7 +2,7 @@
 // vec3f: the renderer's single-precision vector. The teaching surface describes scenes with the
 // book's double vec3; the compiled scene (scene.h) and the render loop work in float.
 
-#include "vec3.h"
+#include "../vec3.h"
 
 #include <cmath>
 

@@ -19,16 +19,14 @@
 // layout fails here rather than producing plausible timings), 0 <= tmin <= tmax, tmin finite,
 // tmax finite or +infinity. The count must match the file size exactly.
 
-#include "image.h" // detail::write_file_atomically
-#include "scene_error.h"
-#include "vec3f.h"
+#include "../scene_error.h"
+#include "file.h"
+#include "../engine/vec3f.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <string>
 #include <system_error>
@@ -147,17 +145,11 @@ inline ray_batch decode_rays(const std::string& bytes, const std::string& name =
 }
 
 inline ray_batch read_rays(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw scene_error("cannot read '" + path + "': it is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw scene_error("cannot read '" + path + "': " + std::strerror(errno));
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw scene_error("cannot read '" + path + "': read error");
-    return decode_rays(bytes, path);
+    return decode_rays(read_file(path, "ray file"), path);
 }
 
 inline void write_rays(const std::string& path, const ray_batch& batch) {
-    detail::write_file_atomically(path, encode_rays(batch, path));
+    write_file_atomically(path, encode_rays(batch, path));
 }
 
 } // namespace rt

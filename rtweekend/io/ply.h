@@ -26,22 +26,21 @@
 // as float coordinates and `list uchar int vertex_indices`; ASCII or binary little-endian; to a
 // temporary file renamed into place.
 
-#include "image.h" // detail::write_file_atomically
-#include "mesh.h"
-#include "scene_error.h"
+#include "../mesh.h"
+#include "../scene_error.h"
+#include "file.h"
+#include "text_lines.h"
 
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <string>
-#include <system_error>
+#include <string_view>
 #include <vector>
 
 namespace rt {
@@ -277,14 +276,7 @@ inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::sha
     using detail::ply_element;
     using detail::ply_property;
     using detail::ply_type;
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw scene_error(path + ": is a directory, not a PLY file");
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw scene_error(path + ": cannot open PLY file");
-    std::ostringstream contents;
-    contents << file.rdbuf();
-    if (file.bad()) throw scene_error(path + ": read error");
-    const std::string text = contents.str();
+    const std::string text = read_file(path, "PLY file");
 
     // --- header: lines up to end_header ---
     auto not_ply = [&] { return scene_error(path + ": not a PLY file (it does not start with a 'ply' line)"); };
@@ -292,14 +284,12 @@ inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::sha
     std::vector<ply_element> elements;
     bool have_format = false, ended = false;
     auto enc = detail::ply_data::encoding::ascii;
-    size_t pos = 0, line_number = 0;
+    text_lines lines(text);
     while (!ended) {
-        if (pos >= text.size()) throw scene_error(path + ": PLY header has no 'end_header' line");
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::istringstream line(text.substr(pos, end - pos));
-        pos = end + 1;
-        ++line_number;
+        std::string_view header_line;
+        if (!lines.next(header_line)) throw scene_error(path + ": PLY header has no 'end_header' line");
+        std::istringstream line{std::string(header_line)};
+        const size_t line_number = lines.number();
         auto fail = [&](const std::string& what) {
             throw scene_error(path + ":" + std::to_string(line_number) + ": malformed PLY header: " + what);
         };
@@ -393,7 +383,8 @@ inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::sha
 
     // Counts against the file's size, before allocating anything: an entry takes at least the sum
     // of its scalars' sizes and its lists' count sizes (binary), or two characters per value (ASCII).
-    size_t data_bytes = text.size() - std::min(pos, text.size());
+    const size_t data_start = lines.offset();
+    size_t data_bytes = text.size() - data_start;
     uint64_t needed = 0;
     for (const auto& e : elements) {
         uint64_t entry = 0;
@@ -415,7 +406,7 @@ inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::sha
     if (has_normals) mesh->normals.reserve(size_t(vertex_count));
     if (has_uvs) mesh->uvs.reserve(size_t(vertex_count));
     mesh->faces.reserve(size_t(face_el->count));
-    detail::ply_data data(path, text, std::min(pos, text.size()), enc, line_number + 1);
+    detail::ply_data data(path, text, data_start, enc, lines.number() + 1);
     std::vector<uint32_t> polygon;
     for (const auto& e : elements) {
         const bool is_vertex = &e == vertex_el, is_face = &e == face_el;
@@ -560,7 +551,7 @@ inline void write_ply(const std::string& path, const triangle_mesh& mesh, bool b
         for (uint32_t i : f) put_int(i);
         end_line();
     }
-    detail::write_file_atomically(path, out);
+    write_file_atomically(path, out);
 }
 
 } // namespace rt

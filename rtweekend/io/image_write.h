@@ -1,5 +1,5 @@
 #pragma once
-// image: a float framebuffer of linear radiance, and the writers that turn it into files.
+// Writing images: the framebuffer (engine/image.h) to files.
 //
 //   write_image(path, img)     format by extension: .ppm (P3, the book's exact layout), .png and
 //                              .bmp (8-bit, via stb_image_write), .pfm (linear float). Writes a
@@ -10,23 +10,19 @@
 //
 // Gamma (the book's square root) and 8-bit quantisation happen only here, at write time.
 // Reading files back is image_read.h's job (kept apart so that this header needs no decoder).
+// Atomic writing and the output-path check are io/file.h's.
 
-#include "color.h"
-#include "scene_error.h"
+#include "../color.h"
+#include "../engine/image.h"
+#include "../scene_error.h"
+#include "file.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
-#include <functional>
 #include <ostream>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #if defined(__GNUC__)
@@ -52,38 +48,6 @@
 #endif
 
 namespace rt {
-
-class image {
-  public:
-    image() = default;
-    image(int width, int height) : width_(width), height_(height), rgb_(size_t(width) * size_t(height) * 3, 0.0f) {}
-
-    int width() const { return width_; }
-    int height() const { return height_; }
-    bool empty() const { return width_ <= 0 || height_ <= 0; }
-
-    // Linear radiance of pixel (x, y); row 0 is the top of the picture.
-    color pixel(int x, int y) const {
-        const float* p = &rgb_[index(x, y)];
-        return color(p[0], p[1], p[2]);
-    }
-    void set_pixel(int x, int y, const color& c) {
-        float* p = &rgb_[index(x, y)];
-        p[0] = static_cast<float>(c.x());
-        p[1] = static_cast<float>(c.y());
-        p[2] = static_cast<float>(c.z());
-    }
-
-    // Interleaved RGB floats, rows top to bottom.
-    const std::vector<float>& data() const { return rgb_; }
-    std::vector<float>& data() { return rgb_; }
-
-  private:
-    size_t index(int x, int y) const { return (size_t(y) * size_t(width_) + size_t(x)) * 3; }
-
-    int width_ = 0, height_ = 0;
-    std::vector<float> rgb_;
-};
 
 // The image encoded the book's way: gamma 2, int(256 * clamp(x, 0, 0.999)), RGB bytes.
 inline std::vector<unsigned char> encode_8bit(const image& img) {
@@ -111,15 +75,6 @@ inline void write_ppm(std::ostream& out, const image& img) { out << ppm_text(img
 
 namespace detail {
 
-inline std::string lowercase_extension(const std::string& path) {
-    auto slash = path.find_last_of("/\\");
-    auto dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext;
-}
-
 inline void append_bytes(void* context, void* data, int size) {
     auto* out = static_cast<std::string*>(context);
     out->append(static_cast<const char*>(data), size_t(size));
@@ -141,14 +96,6 @@ inline std::string encode_pfm(const image& img) {
     return out;
 }
 
-inline std::string temporary_name(const std::string& path) {
-    std::ostringstream name;
-    name << path << ".tmp-" << std::hex
-         << (std::hash<std::thread::id>{}(std::this_thread::get_id()) ^
-             uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()));
-    return name.str();
-}
-
 // The extension of `path` if write_image knows it; throws scene_error otherwise.
 inline std::string image_format(const std::string& path) {
     std::string ext = lowercase_extension(path);
@@ -156,25 +103,6 @@ inline std::string image_format(const std::string& path) {
         throw scene_error("cannot write '" + path + "': unknown image format '" + ext +
                           "' (use .ppm, .png, .bmp or .pfm)");
     return ext;
-}
-
-// Writes `contents` to `path` through a temporary file in the same directory and a rename.
-inline void write_file_atomically(const std::string& path, const std::string& contents) {
-    std::string tmp = temporary_name(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw scene_error("cannot write '" + path + "': " + std::strerror(errno));
-    bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
-    int saved_errno = errno;
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok) {
-        std::remove(tmp.c_str());
-        throw scene_error("cannot write '" + path + "': " + std::strerror(saved_errno ? saved_errno : EIO));
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        saved_errno = errno;
-        std::remove(tmp.c_str());
-        throw scene_error("cannot write '" + path + "': " + std::strerror(saved_errno));
-    }
 }
 
 } // namespace detail
@@ -205,7 +133,7 @@ inline std::string encode_image(const std::string& path, const image& img) {
 }
 
 inline void write_image(const std::string& path, const image& img) {
-    detail::write_file_atomically(path, encode_image(path, img));
+    write_file_atomically(path, encode_image(path, img));
 }
 
 // Throws scene_error now if write_image(path, ...) would fail for want of a known format or a
@@ -213,13 +141,7 @@ inline void write_image(const std::string& path, const image& img) {
 // creates and removes a temporary file beside `path`; `path` itself is not touched.
 inline void check_output_path(const std::string& path) {
     detail::image_format(path);
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw scene_error("cannot write '" + path + "': it is a directory");
-    std::string probe = detail::temporary_name(path);
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw scene_error("cannot write '" + path + "': " + std::strerror(errno));
-    std::fclose(f);
-    std::remove(probe.c_str());
+    check_writable(path);
 }
 
 } // namespace rt

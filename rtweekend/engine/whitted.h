@@ -13,11 +13,11 @@
 // channel to [0, 255] and truncates, as the course's reference images do.
 
 #include "fresnel.h"
-#include "image.h"
+#include "../io/image_write.h"
 #include "ray_offset.h"
-#include "render.h"
-#include "scene.h"
-#include "whitted_scene.h"
+#include "path_tracer.h"
+#include "compiled_scene.h"
+#include "../whitted_scene.h"
 
 #include <chrono>
 #include <cmath>
@@ -341,7 +341,7 @@ inline void write_whitted_image(const std::string& path, const image& img) {
     std::string contents = detail::image_format(path) == ".pfm"
                                ? detail::encode_pfm(img)
                                : encode_8bit_image(path, img.width(), img.height(), encode_whitted_8bit(img));
-    detail::write_file_atomically(path, contents);
+    write_file_atomically(path, contents);
 }
 
 } // namespace rt
