@@ -34,7 +34,7 @@
 #include <rtweekend/mesh.h>
 #include <rtweekend/measure/metrics.h>
 #include <rtweekend/io/ray_file.h>
-#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/camera.h>
 #include <rtweekend/engine/rng.h>
 #include <rtweekend/engine/compiled_scene.h>
 #include <rtweekend/io/scene_file.h>

@@ -9,7 +9,7 @@
 
 #include "app_options.h"
 
-#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/camera.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/engine/whitted.h>
 #include <rtweekend/io/xml_scene.h>

@@ -6,44 +6,32 @@
 //   cam.render(world);                       // P3 PPM on stdout, progress on stderr
 //   image img = cam.render_image(world);     // linear radiance, for programs and tests
 //
-// frame() turns the settings into the geometry that generates rays (camera_frame), in float and
-// relative to lookfrom. The render loop itself lives in render.h, which this header includes at
-// its end so that a book-style main needs only "camera.h".
+// The camera is the teaching surface over three engine pieces: frame() turns the view settings
+// into the geometry that generates rays (engine/camera_frame.h), settings() hands the sampling
+// settings over as render_settings (engine/render_settings.h), and render() runs the path tracer
+// (engine/path_tracer.h) with them.
 
-#include "scene_error.h"
+#include "engine/camera_frame.h"
+#include "engine/environment.h"
+#include "engine/path_tracer.h"
+#include "engine/render_settings.h"
+#include "engine/scheduler.h"
+#include "engine/vec3f.h"
 #include "hittable.h"
 #include "io/image_write.h"
-#include "engine/sampling.h"
+#include "scene_error.h"
 #include "vec3.h"
-#include "engine/vec3f.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <iostream>
 #include <limits>
 #include <optional>
 #include <string>
 
 namespace rt {
-
-// The ray-generation geometry of a camera, relative to its position (lookfrom).
-struct camera_frame {
-    int width = 0, height = 0;
-    vec3f pixel00;              // centre of the top-left pixel
-    vec3f pixel_delta_u;        // offset to the pixel on the right
-    vec3f pixel_delta_v;        // offset to the pixel below
-    vec3f defocus_disk_u;       // defocus disk horizontal radius
-    vec3f defocus_disk_v;       // defocus disk vertical radius
-    bool thin_lens = false;     // defocus_angle > 0: rays start on the lens disk
-
-    // The ray through image position (x, y), in pixels from the top-left corner of the image
-    // ((i + 0.5, j + 0.5) is the centre of pixel (i, j)), starting at lens position (lu, lv) in
-    // the unit disk. Direction normalised; origin relative to lookfrom.
-    ray3f generate(float x, float y, float lu = 0, float lv = 0) const {
-        vec3f target = pixel00 + (x - 0.5f) * pixel_delta_u + (y - 0.5f) * pixel_delta_v;
-        vec3f origin = thin_lens ? lu * defocus_disk_u + lv * defocus_disk_v : vec3f{};
-        return {origin, normalize(target - origin)};
-    }
-};
 
 class camera {
   public:
@@ -61,22 +49,18 @@ class camera {
     double defocus_angle = 0; // Variation angle of rays through each pixel
     double focus_dist = 10;   // Distance from camera lookfrom point to plane of perfect focus
 
-    // Adaptive sampling, off while adaptive_error is 0. Every pixel takes adaptive_min_samples
-    // samples; then, in rounds over the image, a pixel takes more until the 95 % confidence
-    // interval of its mean is narrower than adaptive_error times its value (its luminance, plus
-    // 0.3 in quadrature so that dark pixels are not chased to zero), a target that loosens as
-    // sqrt(n / adaptive_min_samples) and as the square root of the pixel's rays per sample
-    // (against the image's mean): the allocation of samples that minimises the image's squared
-    // error per ray traced. The samples' spread is estimated
-    // from the pixel's neighbours (rtweekend/adaptive.h explains both). samples_per_pixel is the
-    // most a pixel takes; render_stats::samples_saved counts the samples not taken.
+    std::optional<color> background; // Unset: the book's sky gradient; set: this constant colour
+
+    // Beyond the book: sampling settings the camera hands to the renderer (render_settings).
+    uint64_t seed = 0;  // Random seed: the same seed gives the same image at any thread count
+    int threads = 0;    // Worker threads; 0 = all cores
+    bool quiet = false; // No progress or statistics on stderr
+    // Adaptive sampling, off while adaptive_error is 0 (measure/adaptive.h): every pixel takes
+    // adaptive_min_samples samples, then more, in rounds, until the 95 % confidence interval of
+    // its mean is narrow enough relative to its value; samples_per_pixel is then the most a pixel
+    // takes, and render_stats::samples_saved counts the samples not taken.
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
-
-    std::optional<color> background; // Unset: the book's sky gradient; set: this constant colour
-    uint64_t seed = 0;               // Random seed: the same seed gives the same image
-    int threads = 0;                 // Worker threads; 0 = all cores
-    bool quiet = false;              // No progress or statistics on stderr
 
     // Renders the world and writes a P3 PPM to stdout. On invalid input prints one error line
     // to stderr and exits with status 1 (book-style mains have no error handling of their own).
@@ -90,6 +74,40 @@ class camera {
     template <class RayColor>
     image render_image(const hittable& world, RayColor ray_color) const;
 
+    // Throws scene_error "camera: ..." for any setting that cannot be rendered (frame(),
+    // settings() and sky() each check their own part).
+    void check() const {
+        (void)frame();
+        (void)settings();
+        (void)sky();
+    }
+
+    // The sampling settings, checked.
+    render_settings settings() const {
+        render_settings s;
+        s.samples_per_pixel = samples_per_pixel;
+        s.max_depth = max_depth;
+        s.seed = seed;
+        s.threads = threads;
+        s.quiet = quiet;
+        s.adaptive_error = adaptive_error;
+        s.adaptive_min_samples = adaptive_min_samples;
+        s.check("camera");
+        return s;
+    }
+
+    // What a ray that leaves the scene sees: the book's sky, or the background colour (checked).
+    environment sky() const {
+        if (!background) return environment::sky();
+        // The renderer works in float: a background beyond float's range would be infinite there.
+        constexpr double float_max = std::numeric_limits<float>::max();
+        const color& c = *background;
+        require(finite3(c) && c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() <= float_max && c.y() <= float_max &&
+                    c.z() <= float_max,
+                "background must be finite and non-negative (and at most 3.4e38, float's largest value)");
+        return environment::uniform(vec3f(c));
+    }
+
     // The image size the settings give, after validation.
     int height() const {
         if (image_height > 0) return image_height;
@@ -97,10 +115,11 @@ class camera {
         return h < 1 ? 1 : h;
     }
 
-    // Validates the settings and derives the ray-generation geometry.
+    // The ray-generation geometry of the view settings (checked).
     camera_frame frame() const {
-        check_settings();
+        check_view();
         camera_frame f;
+        f.position = lookfrom;
         f.width = image_width;
         f.height = height();
 
@@ -160,7 +179,7 @@ class camera {
         if (!ok) throw scene_error("camera: " + message);
     }
 
-    void check_settings() const {
+    void check_view() const {
         constexpr int max_size = 1 << 16;
         require(image_width >= 1 && image_width <= max_size,
                 "image_width must be between 1 and " + std::to_string(max_size) + ", got " + std::to_string(image_width));
@@ -171,8 +190,6 @@ class camera {
                 "aspect_ratio must be positive and finite, got " + std::to_string(aspect_ratio));
         require(image_height > 0 || image_width / aspect_ratio <= max_size, "aspect_ratio gives an image taller than " +
                                                                                 std::to_string(max_size) + " pixels");
-        require(samples_per_pixel >= 1, "samples_per_pixel must be at least 1, got " + std::to_string(samples_per_pixel));
-        require(max_depth >= 1, "max_depth must be at least 1, got " + std::to_string(max_depth));
         require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
                 "vfov must be between 0 and 180 degrees (exclusive), got " + std::to_string(vfov));
         require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");
@@ -187,26 +204,46 @@ class camera {
                 "defocus_angle must be in [0, 180) degrees, got " + std::to_string(defocus_angle));
         require(std::isfinite(focus_dist) && focus_dist > 0,
                 "focus_dist must be positive and finite, got " + std::to_string(focus_dist));
-        // The renderer works in float: a background beyond float's range would be infinite there.
-        constexpr double float_max = std::numeric_limits<float>::max();
-        require(!background || (finite3(*background) && background->x() >= 0 && background->y() >= 0 &&
-                                background->z() >= 0 && background->x() <= float_max &&
-                                background->y() <= float_max && background->z() <= float_max),
-                "background must be finite and non-negative (and at most 3.4e38, float's largest value)");
-        require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
-        require(std::isfinite(adaptive_error) && adaptive_error >= 0,
-                "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
-        require(adaptive_min_samples >= 2,
-                "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
-                    std::to_string(adaptive_min_samples));
     }
 };
+
+// Renders `world` as `cam` sees it, with the path tracer: the image and the statistics.
+inline render_result render(const camera& cam, const hittable& world) {
+    return path_trace(world, cam.frame(), cam.sky(), cam.settings());
+}
+
+inline image camera::render_image(const hittable& world) const { return rt::render(*this, world).img; }
+
+template <class RayColor>
+image camera::render_image(const hittable& world, RayColor ray_color) const {
+    auto start = std::chrono::steady_clock::now();
+    const camera_frame f = frame();
+    const render_settings s = settings();
+    return render_samples(
+               f.width, f.height, s,
+               [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
+                   ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng);
+                   ++rays;
+                   detail::scoped_sample_rng guard(rng); // ray_color may call random_double()
+                   color c = ray_color(ray(f.position + r.origin.to_double(), r.dir.to_double()), world);
+                   return vec3f(c);
+               },
+               start)
+        .img;
+}
+
+inline void camera::render(const hittable& world) const {
+    try {
+        write_ppm(std::cout, render_image(world));
+        std::cout.flush();
+    } catch (const scene_error& e) {
+        std::cerr << "rtweekend: error: " << e.what() << '\n';
+        std::exit(1);
+    }
+}
 
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::camera;
 #endif
-
-// The render loop and camera::render's definitions (render.h includes this header first).
-#include "engine/path_tracer.h"

@@ -2,15 +2,17 @@
 // calm stop at the minimum; noisy ones go on, in proportion to their noise (Neyman); the image
 // stays unbiased and deterministic, and samples_saved counts what was not taken.
 //
-// Most tests drive detail::run_tiles with a synthetic sample function whose values have a known
+// Most tests drive render_samples with a synthetic sample function whose values have a known
 // distribution (and so a known exact mean), and which counts the samples each pixel takes.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
-#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/camera.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>
+
+#include "test_helpers.h"
 
 #include <chrono>
 #include <cmath>
@@ -23,15 +25,9 @@ using namespace rt;
 namespace {
 
 camera adaptive_camera(int w, int h, int spp, double error) {
-    camera cam;
-    cam.image_width = w;
-    cam.image_height = h;
-    cam.samples_per_pixel = spp;
-    cam.max_depth = 8;
+    camera cam = test::test_camera(w, h, spp, 8);
     cam.adaptive_error = error;
     cam.adaptive_min_samples = 16;
-    cam.quiet = true;
-    cam.threads = 2;
     return cam;
 }
 
@@ -42,15 +38,12 @@ template <class Value>
 render_result synthetic(const camera& cam, std::vector<int>& counts, Value value) {
     const camera_frame frame = cam.frame();
     counts.assign(size_t(frame.width) * size_t(frame.height), 0);
-    return detail::run_tiles(
-        cam, frame,
-        [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-            ++rays;
-            ++counts[size_t(y) * size_t(frame.width) + size_t(x)];
-            float v = value(x, y, rng.next_float());
-            return vec3f{v, v, v};
-        },
-        std::chrono::steady_clock::now());
+    return render_samples(frame.width, frame.height, cam.settings(), [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
+        ++rays;
+        ++counts[size_t(y) * size_t(frame.width) + size_t(x)];
+        float v = value(x, y, rng.next_float());
+        return vec3f{v, v, v};
+    });
 }
 
 double mean_count(const std::vector<int>& counts, int w, int x0, int x1, int h) {

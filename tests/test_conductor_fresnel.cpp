@@ -13,6 +13,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -43,7 +45,6 @@ double reference_reflectance(double cos_i, std::complex<double> N) {
     return 0.5 * (reference_rs(cos_i, N) + reference_rp(cos_i, N));
 }
 
-vec3 to_d(const vec3f& v) { return vec3(v.x, v.y, v.z); }
 
 // An orthonormal tangent of the unit vector n.
 vec3 tangent_of(const vec3& n) {
@@ -55,17 +56,6 @@ vec3 tangent_of(const vec3& n) {
 vec3 incident(const vec3& n, double angle_deg) {
     double th = angle_deg * pi_d / 180;
     return -std::cos(th) * n + std::sin(th) * tangent_of(n);
-}
-
-camera test_cam(int w, int h, int spp, int depth) {
-    camera cam;
-    cam.image_width = w;
-    cam.image_height = h;
-    cam.samples_per_pixel = spp;
-    cam.max_depth = depth;
-    cam.quiet = true;
-    cam.threads = 2;
-    return cam;
 }
 
 // Compiling a world with one sphere of `mat` must throw a scene_error mentioning `fragment`.
@@ -352,7 +342,7 @@ TEST_CASE("conductor: the kernel mirrors exactly and weights by tint * Fr(cos) p
             vec3f dir, att;
             REQUIRE(scatter_builtin(m, vec3f(d), vec3f(N), front, rng, dir, att));
             vec3 mirror = d - 2 * dot(d, N) * N;
-            CHECK((to_d(dir) - mirror).length() < 1e-6);
+            CHECK((dir.to_double() - mirror).length() < 1e-6);
             double c = std::cos(angle * pi_d / 180);
             for (int ch = 0; ch < 3; ++ch) {
                 double Fr = reference_reflectance(c, std::complex<double>(m.eta[ch], m.k[ch]));
@@ -385,7 +375,7 @@ long count_exact_reflections(const exact_glass_case& g, float kernel_ior, long N
         vec3f dir, att;
         REQUIRE(scatter_builtin(glass, vec3f(wi), vec3f(n), g.front_face, rng, dir, att));
         if (!(att.x == 1 && att.y == 1 && att.z == 1)) FAIL_CHECK("weight is not 1");
-        vec3 d = to_d(dir);
+        vec3 d = dir.to_double();
         if (std::fabs(d.length() - 1) > 1e-5) FAIL_CHECK("direction is not unit");
         if (dot(d, n) > 0) {
             ++reflected;
@@ -471,7 +461,7 @@ TEST_CASE("conductor: a perfect conductor sphere (k huge, tint 1) renders exactl
     const color B(0.25, 0.5, 1.0);
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<conductor>(1.0, 1e8, color(1, 1, 1))));
-    camera cam = test_cam(16, 16, 4, 8);
+    camera cam = test::test_camera(16, 16, 4, 8);
     cam.background = B;
     cam.vfov = 60;
     cam.lookfrom = point3(0, 1, 3);
@@ -496,7 +486,7 @@ TEST_CASE("conductor: every pixel of a gold sphere is tint * Fr(cos) * B at the 
     const int W = 24, H = 24;
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<conductor>(n, k, tint)));
-    camera cam = test_cam(W, H, 1, 4);
+    camera cam = test::test_camera(W, H, 1, 4);
     cam.background = B;
     cam.vfov = 50;
     cam.lookfrom = point3(0, 0, 1.5);
@@ -534,7 +524,7 @@ TEST_CASE("fresnel: a clear exact-Fresnel glass sphere renders exactly a constan
     const color B(0.25, 0.5, 0.75);
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<dielectric>(1.5, color(0, 0, 0))));
-    camera cam = test_cam(16, 16, 8, 64);
+    camera cam = test::test_camera(16, 16, 8, 64);
     cam.background = B;
     cam.vfov = 30;
     cam.lookfrom = point3(0.5, 1, 3);
@@ -587,7 +577,7 @@ TEST_CASE("fresnel: Beer's law through an absorbing slab, multiple internal refl
     };
     quad(0, true);
     quad(-d, false);
-    camera cam = test_cam(16, 16, 256, 40);
+    camera cam = test::test_camera(16, 16, 256, 40);
     cam.vfov = 1;
     cam.lookfrom = point3(0, 5, 0);
     cam.lookat = point3(0, 0, 0);

@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -69,27 +71,6 @@ std::string read_file(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
-
-// A fresh directory under the system temp dir, removed with everything in it at scope exit.
-struct temp_dir {
-    fs::path path;
-    temp_dir() {
-        static std::atomic<int> counter{0};
-        auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path = fs::temp_directory_path() /
-               ("rtweekend_test_image_" + std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path);
-    }
-    ~temp_dir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-        return names;
-    }
-};
 
 // Runs f, expects a scene_error whose one-line message contains every given fragment.
 template <class F>
@@ -167,7 +148,7 @@ TEST_CASE("write_ppm: byte-exact P3 text") {
 }
 
 TEST_CASE("write_image: .ppm, .pfm, .png, .bmp, and uppercase extensions") {
-    temp_dir dir;
+    test::scratch_dir dir;
     const image img = test_image();
 
     SUBCASE("ppm") {
@@ -241,7 +222,7 @@ TEST_CASE("write_image: .ppm, .pfm, .png, .bmp, and uppercase extensions") {
 }
 
 TEST_CASE("write_image: unknown extensions are rejected, naming the extension and path") {
-    temp_dir dir;
+    test::scratch_dir dir;
     const image img = test_image();
     std::string jpg = (dir.path / "out.jpg").string();
     check_scene_error([&] { write_image(jpg, img); }, {jpg, ".jpg"});
@@ -258,7 +239,7 @@ TEST_CASE("write_image: unknown extensions are rejected, naming the extension an
 }
 
 TEST_CASE("write_image: unwritable paths throw, naming the path, and leave nothing behind") {
-    temp_dir dir;
+    test::scratch_dir dir;
     const image img = test_image();
 
     // A directory that does not exist.
@@ -285,7 +266,7 @@ TEST_CASE("write_image: unwritable paths throw, naming the path, and leave nothi
 }
 
 TEST_CASE("write_image and encode_image: an empty image throws") {
-    temp_dir dir;
+    test::scratch_dir dir;
     std::string p = (dir.path / "empty.png").string();
     check_scene_error([&] { write_image(p, image()); }, {p, "empty"});
     check_scene_error([&] { write_image(p, image(0, 3)); }, {p});
@@ -295,7 +276,7 @@ TEST_CASE("write_image and encode_image: an empty image throws") {
 }
 
 TEST_CASE("check_output_path: refuses what write_image would refuse, touches nothing") {
-    temp_dir dir;
+    test::scratch_dir dir;
     // A writable path with a known format: no error, and neither the file nor a probe remains.
     fs::path ok = dir.path / "fine.png";
     CHECK_NOTHROW(check_output_path(ok.string()));

@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -41,27 +43,6 @@ image test_image() {
     return img;
 }
 const float expected_codes[18] = {128, 255, 0, 64, 192, 255, 242, 0, 0, 25, 0, 255, 96, 0, 0, 0, 0, 100};
-
-// A fresh directory under the system temp dir, removed with everything in it at scope exit.
-struct temp_dir {
-    fs::path path;
-    temp_dir() {
-        static std::atomic<int> counter{0};
-        auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-        path = fs::temp_directory_path() /
-               ("rtweekend_test_image_read_" + std::to_string(stamp) + "_" + std::to_string(counter++));
-        fs::create_directories(path);
-    }
-    ~temp_dir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string write(const std::string& name, const std::string& bytes) const {
-        fs::path p = path / name;
-        std::ofstream(p, std::ios::binary) << bytes;
-        return p.string();
-    }
-};
 
 std::string bytes_of(std::initializer_list<int> values) {
     std::string s;
@@ -107,7 +88,7 @@ void check_read_error(const std::string& path, const std::string& problem) {
 } // namespace
 
 TEST_CASE("read_image: every writer round-trips") {
-    temp_dir dir;
+    test::scratch_dir dir;
     const image img = test_image();
     const std::vector<float> codes(std::begin(expected_codes), std::end(expected_codes));
 
@@ -208,7 +189,7 @@ TEST_CASE("read_image: hand-written PFM files, both byte orders, colour and grey
 }
 
 TEST_CASE("read_image: missing, truncated and malformed files throw, naming the path") {
-    temp_dir dir;
+    test::scratch_dir dir;
     const image img = test_image();
     const std::string png = encode_image("x.png", img), bmp = encode_image("x.bmp", img), pfm = encode_image("x.pfm", img);
 

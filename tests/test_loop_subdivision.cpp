@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -60,24 +62,6 @@ void check_refused(const tri_mesh& m, const std::string& fragment) {
 }
 
 namespace fs = std::filesystem;
-
-struct scratch_dir {
-    fs::path path;
-    explicit scratch_dir(const std::string& name) {
-        path = fs::temp_directory_path() / ("rtweekend-test-loop-" + name + "-" + std::to_string(::getpid()));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::string p = (path / name).string();
-        std::ofstream(p, std::ios::binary) << text;
-        return p;
-    }
-};
 
 } // namespace
 
@@ -222,7 +206,7 @@ TEST_CASE("loop: OBJ text out and back in") {
     // Shortest round-trip float text; 1-based faces.
     CHECK(app::encode_obj(m, "three") == "# three\nv 0 0.5 -1\nv 0.1 0.001 250\nv -3.25 2 0\nf 1 2 3\n");
 
-    scratch_dir dir("obj");
+    test::scratch_dir dir("obj");
     const std::string path = (dir.path / "tri.obj").string();
     app::write_obj(path, m);
     tri_mesh back = app::read_obj(path);
@@ -241,7 +225,7 @@ TEST_CASE("loop: OBJ text out and back in") {
 }
 
 TEST_CASE("loop: malformed OBJ files are refused with the file name") {
-    scratch_dir dir("badobj");
+    test::scratch_dir dir("badobj");
     auto check_bad = [&](const std::string& name, const std::string& text, const std::string& fragment) {
         const std::string path = dir.write(name, text);
         CAPTURE(name);

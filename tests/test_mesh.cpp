@@ -4,11 +4,13 @@
 #include <rtweekend/material.h>
 #include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/camera.h>
 #include <rtweekend/engine/compiled_scene.h>
 #include <rtweekend/io/scene_file.h>
 
 #include <doctest/doctest.h>
+
+#include "test_helpers.h"
 
 #include <cmath>
 #include <filesystem>
@@ -23,24 +25,6 @@ using namespace rt;
 namespace {
 
 const std::string mesh_dir = std::string(RTWEEKEND_TEST_DATA) + "/meshes";
-
-// A scratch directory for files a test writes; removed at the end of the test.
-struct scratch_dir {
-    std::filesystem::path path;
-    explicit scratch_dir(const std::string& name)
-        : path(std::filesystem::temp_directory_path() / ("rtweekend_test_mesh_" + name)) {
-        std::filesystem::remove_all(path);
-        std::filesystem::create_directories(path);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path, ec);
-    }
-    std::string write(const std::string& file, const std::string& text) const {
-        std::ofstream(path / file) << text;
-        return (path / file).string();
-    }
-};
 
 // The unit cube [0,1]^3 as six quads, outward-facing, with one normal per face and UVs.
 const std::string cube_obj = R"(# unit cube
@@ -70,7 +54,7 @@ f 1/1/5 5/2/5 8/3/5 4/4/5
 f 2/1/6 3/2/6 7/3/6 6/4/6
 )";
 
-void check_obj_error(const scratch_dir& dir, const std::string& text, const std::string& fragment) {
+void check_obj_error(const test::scratch_dir& dir, const std::string& text, const std::string& fragment) {
     CAPTURE(text);
     std::string path = dir.write("bad.obj", text);
     bool threw = false;
@@ -90,7 +74,7 @@ void check_obj_error(const scratch_dir& dir, const std::string& text, const std:
 } // namespace
 
 TEST_CASE("load_obj: quads become triangles; positions, normals and uvs are kept") {
-    scratch_dir dir("cube");
+    test::scratch_dir dir("cube");
     auto mat = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
     auto mesh = load_obj(dir.write("cube.obj", cube_obj), mat);
     CHECK(mesh->triangle_count() == 12);
@@ -149,7 +133,7 @@ TEST_CASE("load_obj: the shared test meshes load with their documented triangle 
 }
 
 TEST_CASE("load_obj: a missing or malformed file is one clear error naming it") {
-    scratch_dir dir("errors");
+    test::scratch_dir dir("errors");
     CHECK_THROWS_WITH_AS(load_obj((dir.path / "missing.obj").string(), nullptr),
                          doctest::Contains("missing.obj: cannot open OBJ file"), scene_error);
     CHECK_THROWS_WITH_AS(load_obj(dir.path.string(), nullptr), doctest::Contains("is a directory"), scene_error);
@@ -167,7 +151,7 @@ TEST_CASE("load_obj: a missing or malformed file is one clear error naming it") 
 }
 
 TEST_CASE("scene files: 'mesh' and 'triangle' lines") {
-    scratch_dir dir("scene");
+    test::scratch_dir dir("scene");
     std::filesystem::create_directories(dir.path / "models");
     dir.write("models/cube.obj", cube_obj);
     // The OBJ path is relative to the scene file, not to the working directory.
@@ -210,7 +194,7 @@ TEST_CASE("scene files: 'mesh' and 'triangle' lines") {
 }
 
 TEST_CASE("scene files: a 'mesh' line reads a .ply file as PLY") {
-    scratch_dir dir("scene_ply");
+    test::scratch_dir dir("scene_ply");
     // An ASCII PLY square (two triangles after the fan split), next to the scene file.
     dir.write("square.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
@@ -230,7 +214,7 @@ TEST_CASE("render: a convex mesh in a white furnace renders its albedo exactly, 
     // A closed convex mesh (the cube) under a uniform white sky: a path leaving a Lambertian
     // face can never hit the cube again, so every sample that sees the cube is exactly the
     // albedo and every other sample exactly 1. A self-intersection (acne) would give a^2.
-    scratch_dir dir("furnace");
+    test::scratch_dir dir("furnace");
     std::string path = dir.write("cube.obj", cube_obj);
     for (double offset : {0.0, 1e4, 1e5}) {
         CAPTURE(offset);

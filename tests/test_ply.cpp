@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -23,25 +25,6 @@ using namespace rt;
 namespace {
 
 const std::string ply_dir = std::string(RTWEEKEND_TEST_DATA) + "/ply";
-
-// A scratch directory for files a test writes, unique to this process; removed at the end.
-struct scratch_dir {
-    std::filesystem::path path;
-    explicit scratch_dir(const std::string& name)
-        : path(std::filesystem::temp_directory_path() /
-               ("rtweekend_test_ply_" + name + "_" + std::to_string(::getpid()))) {
-        std::filesystem::remove_all(path);
-        std::filesystem::create_directories(path);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path, ec);
-    }
-    std::string write(const std::string& file, const std::string& bytes) const {
-        std::ofstream(path / file, std::ios::binary) << bytes;
-        return (path / file).string();
-    }
-};
 
 // Bytes of PLY binary data, packed by hand in either byte order.
 struct packer {
@@ -167,7 +150,7 @@ void check_typed_mesh(const triangle_mesh& m) {
     CHECK(m.face_uvs.empty());
 }
 
-void check_ply_error(const scratch_dir& dir, const std::string& bytes, const std::vector<std::string>& fragments) {
+void check_ply_error(const test::scratch_dir& dir, const std::string& bytes, const std::vector<std::string>& fragments) {
     CAPTURE(bytes);
     std::string path = dir.write("bad.ply", bytes);
     std::string message;
@@ -235,7 +218,7 @@ TEST_CASE("ply: unknown elements and properties, including lists, are skipped, n
 }
 
 TEST_CASE("ply: hand-packed binary little- and big-endian data load to the same mesh as the ASCII twin") {
-    scratch_dir dir("binary");
+    test::scratch_dir dir("binary");
     auto ascii = load_ply(dir.write("ascii.ply", typed_header("ascii", "vertex_indices") + typed_ascii_data), nullptr);
     check_typed_mesh(*ascii);
     auto little = load_ply(dir.write("le.ply", typed_header("binary_little_endian", "vertex_indices") +
@@ -255,7 +238,7 @@ TEST_CASE("ply: hand-packed binary little- and big-endian data load to the same 
 }
 
 TEST_CASE("ply: write_ply round trips, ASCII and binary, with normals and uvs") {
-    scratch_dir dir("write");
+    test::scratch_dir dir("write");
     triangle_mesh m;
     m.positions = {point3(0, 0, 0), point3(1.5, 0, 0), point3(0, 2.25, 0), point3(0, 0, -3.125)};
     m.faces = {{0, 1, 2}, {0, 2, 3}};
@@ -308,7 +291,7 @@ TEST_CASE("ply: write_ply round trips, ASCII and binary, with normals and uvs") 
 }
 
 TEST_CASE("ply: files that cannot be read") {
-    scratch_dir dir("files");
+    test::scratch_dir dir("files");
     CHECK_THROWS_WITH_AS(load_ply((dir.path / "missing.ply").string(), nullptr),
                          doctest::Contains("missing.ply: cannot open PLY file"), scene_error);
     CHECK_THROWS_WITH_AS(load_ply(dir.path.string(), nullptr), doctest::Contains("is a directory"), scene_error);
@@ -318,7 +301,7 @@ TEST_CASE("ply: files that cannot be read") {
 }
 
 TEST_CASE("ply: malformed headers") {
-    scratch_dir dir("header");
+    test::scratch_dir dir("header");
     check_ply_error(dir, "ply\nformat ascii 1.0\nelement vertex 3\n", {"no 'end_header'"});
     check_ply_error(dir, "ply\nelement vertex 0\nend_header\n", {"no 'format' line"});
     check_ply_error(dir, "ply\nformat binary_middle_endian 1.0\nend_header\n", {":2:", "unknown format"});
@@ -350,7 +333,7 @@ TEST_CASE("ply: malformed headers") {
 }
 
 TEST_CASE("ply: bad ASCII data names the line, the entry and the problem") {
-    scratch_dir dir("ascii");
+    test::scratch_dir dir("ascii");
     check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", {":13:", "face 0 uses vertex 3 but the file has 3 vertices"});
     check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", {"face 0 uses vertex -1"});
     check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", {":13:", "face 0 has 2 corners (at least 3 needed)"});
@@ -371,7 +354,7 @@ TEST_CASE("ply: bad ASCII data names the line, the entry and the problem") {
 }
 
 TEST_CASE("ply: bad binary data: truncation, absurd counts, NaN, bad indices") {
-    scratch_dir dir("binary_errors");
+    test::scratch_dir dir("binary_errors");
     const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
                                "property float y\nproperty float z\nelement face 1\n"
                                "property list uchar int vertex_indices\nend_header\n";

@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -20,21 +22,6 @@ using namespace rt;
 namespace {
 
 namespace fs = std::filesystem;
-
-// A fresh directory per test case, removed afterwards.
-struct scratch_dir {
-    fs::path path;
-    explicit scratch_dir(const std::string& name) {
-        path = fs::temp_directory_path() / ("rtweekend-test-ray-file-" + name + "-" + std::to_string(::getpid()));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-};
 
 void write_bytes(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
@@ -60,7 +47,7 @@ const std::string ray_bytes("\0\0\x80\x3f"  // ox 1
 
 // Reading `bytes` from a file must throw a one-line scene_error naming the file and `fragment`.
 void check_rejected(const std::string& bytes, const std::string& fragment) {
-    scratch_dir dir("bad");
+    test::scratch_dir dir("bad");
     std::string path = dir.file("bad.rays");
     write_bytes(path, bytes);
     CAPTURE(fragment);
@@ -104,7 +91,7 @@ TEST_CASE("ray file: a hand-built file decodes to the rays in it, and encodes ba
 }
 
 TEST_CASE("ray file: write_rays then read_rays gives the same rays bit for bit, for both kinds") {
-    scratch_dir dir("roundtrip");
+    test::scratch_dir dir("roundtrip");
     ray_batch closest;
     closest.kind = ray_query::closest;
     const float inf = std::numeric_limits<float>::infinity();
@@ -176,7 +163,7 @@ TEST_CASE("ray file: each kind of malformed file is refused with the file's name
 }
 
 TEST_CASE("ray file: missing files, directories and unwritable paths are errors naming the path") {
-    scratch_dir dir("paths");
+    test::scratch_dir dir("paths");
     CHECK_THROWS_WITH_AS(read_rays(dir.file("missing.rays")),
                          doctest::Contains("missing.rays"), scene_error);
     CHECK_THROWS_WITH_AS(read_rays(dir.path.string()), doctest::Contains("directory"), scene_error);
@@ -188,7 +175,7 @@ TEST_CASE("ray file: missing files, directories and unwritable paths are errors 
 }
 
 TEST_CASE("ray file: write_rays refuses a bad ray and leaves no file behind") {
-    scratch_dir dir("refuse");
+    test::scratch_dir dir("refuse");
     ray_batch b;
     b.rays.push_back({{0, 0, 0}, {0, 0, 1}, 0, 1});
     b.rays.push_back({{0, std::numeric_limits<float>::quiet_NaN(), 0}, {0, 0, 1}, 0, 1});

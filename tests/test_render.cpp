@@ -1,4 +1,4 @@
-// The renderer (rtweekend/engine/path_tracer.h): determinism across thread counts, analytic "furnace" images,
+// The renderer (rtweekend/camera.h): determinism across thread counts, analytic "furnace" images,
 // exact ray counts, user-written shapes and materials through the book's virtual interfaces, and
 // the user shader path camera::render_image(world, ray_color).
 //
@@ -15,6 +15,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -28,27 +30,11 @@ using namespace rt;
 
 namespace {
 
-camera small_camera(int w, int h, int spp, int depth) {
-    camera cam;
-    cam.image_width = w;
-    cam.image_height = h;
-    cam.samples_per_pixel = spp;
-    cam.max_depth = depth;
-    cam.quiet = true;
-    cam.threads = 2;
-    return cam;
-}
-
-bool same_bits(const image& a, const image& b) {
-    return a.width() == b.width() && a.height() == b.height() && a.data().size() == b.data().size() &&
-           std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(float)) == 0;
-}
-
 // Looking down -z from the origin at a sphere of radius 1 centred at (0,0,-2): its angular radius
 // is asin(1/2) = 30 deg; with vfov 20 and a 20x12 image the view's corner half-diagonal is
 // atan(tan(10 deg) * sqrt(1 + (20/12)^2)) = atan(0.3427) = 18.9 deg, so every camera ray hits it.
 camera furnace_camera(int spp, int depth) {
-    camera cam = small_camera(20, 12, spp, depth);
+    camera cam = test::test_camera(20, 12, spp, depth);
     cam.vfov = 20;
     cam.lookfrom = point3(0, 0, 0);
     cam.lookat = point3(0, 0, -1);
@@ -192,7 +178,7 @@ hittable_list mixed_scene() {
 }
 
 camera mixed_camera() {
-    camera cam = small_camera(40, 24, 4, 10);
+    camera cam = test::test_camera(40, 24, 4, 10);
     cam.vfov = 30;
     cam.lookfrom = point3(-2, 2, 1);
     cam.lookat = point3(0, 0, -1);
@@ -213,8 +199,8 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
     render_result r2 = render(cam, world);
     cam.threads = 3;
     render_result r3 = render(cam, world);
-    CHECK(same_bits(r1.img, r2.img));
-    CHECK(same_bits(r1.img, r3.img));
+    CHECK(test::same_bits(r1.img, r2.img));
+    CHECK(test::same_bits(r1.img, r3.img));
     CHECK(r1.stats.rays == r2.stats.rays);
     CHECK(r1.stats.rays == r3.stats.rays);
     // 40x24 in 16x16 tiles is 3x2 = 6 tiles, so 3 threads really are used.
@@ -223,12 +209,12 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
 
     // The same settings again: the same image (no hidden state between renders).
     cam.threads = 2;
-    CHECK(same_bits(render(cam, world).img, r1.img));
+    CHECK(test::same_bits(render(cam, world).img, r1.img));
 
     // Another seed gives another image.
     cam.seed = 43;
     render_result other = render(cam, world);
-    CHECK_FALSE(same_bits(other.img, r1.img));
+    CHECK_FALSE(test::same_bits(other.img, r1.img));
 
     // Sanity of the image itself: finite, non-negative, not black, nothing dropped.
     CHECK(r1.stats.nonfinite_samples == 0);
@@ -247,7 +233,7 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
 
 TEST_CASE("render: threads larger than the number of tiles are capped") {
     hittable_list world;
-    camera cam = small_camera(16, 16, 1, 2); // exactly one 16x16 tile
+    camera cam = test::test_camera(16, 16, 1, 2); // exactly one 16x16 tile
     cam.threads = 8;
     render_result r = render(cam, world);
     CHECK(r.stats.threads == 1);
@@ -259,7 +245,7 @@ TEST_CASE("render: threads larger than the number of tiles are capped") {
 TEST_CASE("render: empty world shows the background, one ray per sample") {
     hittable_list world;
     SUBCASE("constant background") {
-        camera cam = small_camera(20, 12, 3, 5);
+        camera cam = test::test_camera(20, 12, 3, 5);
         cam.background = color(0.25, 0.5, 0.75);
         render_result r = render(cam, world);
         check_uniform(r.img, color(0.25, 0.5, 0.75));
@@ -272,7 +258,7 @@ TEST_CASE("render: empty world shows the background, one ray per sample") {
         // Camera at the origin looking down -z, vfov 90, 8x6: the ray through pixel (x, y) has
         // direction ((2 (x + 0.5)/8 - 1) * 8/6, 1 - 2 (y + 0.5)/6, -1) (viewport half-height
         // tan 45 = 1 at unit distance). The sky is (1 - a) white + a (0.5, 0.7, 1), a = (dir_y + 1)/2.
-        camera cam = small_camera(8, 6, 1, 5);
+        camera cam = test::test_camera(8, 6, 1, 5);
         cam.vfov = 90;
         render_result r = render(cam, world);
         for (int y = 0; y < 6; ++y)
@@ -364,7 +350,7 @@ TEST_CASE("render: furnace with a mirror and a glass sphere") {
 TEST_CASE("render: a user-written hittable (a plane) renders through the book interface") {
     // Looking straight down at the plane y = 0 from (0,5,0): every camera ray hits it (vfov 60),
     // and rays scattered upward can never come back to a plane.
-    camera cam = small_camera(12, 12, 4, 5);
+    camera cam = test::test_camera(12, 12, 4, 5);
     cam.vfov = 60;
     cam.lookfrom = point3(0, 5, 0);
     cam.lookat = point3(0, 0, 0);
@@ -415,7 +401,7 @@ TEST_CASE("render: the book's own sphere code as a user hittable (furnace)") {
     cam.threads = 1;
     image a = render(cam, world).img;
     cam.threads = 3;
-    CHECK(same_bits(a, render(cam, world).img));
+    CHECK(test::same_bits(a, render(cam, world).img));
 }
 
 TEST_CASE("render: a user-written material on a built-in sphere") {
@@ -425,7 +411,7 @@ TEST_CASE("render: a user-written material on a built-in sphere") {
     check_uniform(r.img, color(double(0.9f), 0.5, 0.25));
     CHECK(r.stats.rays == 2 * sample_count(cam));
     cam.threads = 1;
-    CHECK(same_bits(r.img, render(cam, world).img));
+    CHECK(test::same_bits(r.img, render(cam, world).img));
 }
 
 TEST_CASE("render: a user material that calls random_double() is deterministic and unbiased") {
@@ -447,8 +433,8 @@ TEST_CASE("render: a user material that calls random_double() is deterministic a
     render_result r2 = render(cam, world);
     cam.threads = 3;
     render_result r3 = render(cam, world);
-    CHECK(same_bits(r1.img, r2.img));
-    CHECK(same_bits(r1.img, r3.img));
+    CHECK(test::same_bits(r1.img, r2.img));
+    CHECK(test::same_bits(r1.img, r3.img));
 
     const double spp = cam.samples_per_pixel;
     double survivors = 0;
@@ -467,22 +453,22 @@ TEST_CASE("render: a user material that calls random_double() is deterministic a
     CHECK(double(r1.stats.rays) == N + survivors);
 
     cam.seed = 1;
-    CHECK_FALSE(same_bits(render(cam, world).img, r1.img));
+    CHECK_FALSE(test::same_bits(render(cam, world).img, r1.img));
 }
 
 TEST_CASE("render: exceptions thrown by user code reach the caller") {
-    camera cam = small_camera(40, 40, 1, 2);
+    camera cam = test::test_camera(40, 40, 1, 2);
     cam.threads = 3;
     hittable_list world;
     world.add(std::make_shared<throwing_hittable>());
     CHECK_THROWS_AS((void)render(cam, world), std::runtime_error);
 }
 
-TEST_CASE("render: describe() is one line with the counts") {
+TEST_CASE("render: stats_line() is one line with the counts") {
     camera cam = furnace_camera(2, 2);
     hittable_list world = one_sphere(std::make_shared<lambertian>(color(0.5, 0.5, 0.5)));
     render_result r = render(cam, world);
-    std::string line = describe(r.stats);
+    std::string line = stats_line(r.stats);
     CHECK(line.find('\n') == std::string::npos);
     CHECK(line.find("20x12") != std::string::npos);
     CHECK(line.find(std::to_string(2 * 20 * 12 * 2) + " rays") != std::string::npos); // 960 rays
@@ -491,14 +477,14 @@ TEST_CASE("render: describe() is one line with the counts") {
 TEST_CASE("camera::render_image(world) equals render(cam, world).img") {
     const hittable_list world = mixed_scene();
     camera cam = mixed_camera();
-    CHECK(same_bits(cam.render_image(world), render(cam, world).img));
+    CHECK(test::same_bits(cam.render_image(world), render(cam, world).img));
 }
 
 TEST_CASE("camera::render_image(world, ray_color): the shader sees the frame's rays") {
     // Camera at (1,2,3) looking down -z (lookat (1,2,2)), vfov 90, 8x4, spp 1: the ray through
     // pixel (x, y) starts at lookfrom and has direction
     // ((2 (x + 0.5)/8 - 1) * 2, 1 - 2 (y + 0.5)/4, -1), normalised (aspect 8/4 = 2).
-    camera cam = small_camera(8, 4, 1, 1);
+    camera cam = test::test_camera(8, 4, 1, 1);
     cam.vfov = 90;
     cam.lookfrom = point3(1, 2, 3);
     cam.lookat = point3(1, 2, 2);
@@ -533,7 +519,7 @@ TEST_CASE("camera::render_image(world, ray_color): the shader sees the frame's r
 }
 
 TEST_CASE("camera::render_image(world, ray_color): random_double() in a shader is deterministic") {
-    camera cam = small_camera(24, 20, 4, 1);
+    camera cam = test::test_camera(24, 20, 4, 1);
     hittable_list world;
     auto noise = [](const ray&, const hittable&) {
         double a = random_double(), b = random_double(), c = random_double();
@@ -543,7 +529,7 @@ TEST_CASE("camera::render_image(world, ray_color): random_double() in a shader i
     image a = cam.render_image(world, noise);
     cam.threads = 2;
     image b = cam.render_image(world, noise);
-    CHECK(same_bits(a, b));
+    CHECK(test::same_bits(a, b));
     // The values are means of 4 uniforms on [0, 1): in [0, 1), varying, mean 0.5 within
     // 5 sigma: Var = 1/12 per uniform, N = 24 * 20 * 4 * 3 uniforms -> 5 sqrt(1/12/N) = 0.019.
     double sum = 0, lo = 1, hi = 0;
@@ -567,7 +553,7 @@ TEST_CASE("camera samples: thin-lens rays start on the lens disk and pass throug
     // Lens points are uniform on the disk: E[|o|^2] = R^2 / 2 with Var = R^4 / 12.
     // Pixel samples are uniform over the pixel: the mean of X over spp samples of pixel (x, y) is
     // x + 1/2 with standard error sqrt(1/12/spp).
-    camera cam = small_camera(4, 4, 64, 1);
+    camera cam = test::test_camera(4, 4, 64, 1);
     cam.vfov = 90;
     cam.focus_dist = 2;
     cam.defocus_angle = 40;

@@ -4,7 +4,7 @@
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/camera.h>
 #include <rtweekend/engine/compiled_scene.h>
 #include <rtweekend/sphere.h>
 

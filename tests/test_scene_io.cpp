@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -251,28 +253,20 @@ TEST_CASE("load_scene: a missing file is a scene_error naming it") {
 }
 
 TEST_CASE("load_scene: errors in a file carry the file's path and line") {
-    namespace fs = std::filesystem;
-    fs::path path = fs::temp_directory_path() /
-                    ("rtweekend_test_scene_io_" +
-                     std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + ".txt");
-    {
-        std::ofstream out(path);
-        out << "camera vfov 20\n"
-            << "sphere 0 0 0 -1 lambertian 1 1 1 0 0\n";
-    }
+    test::scratch_dir dir("scene_io");
+    const std::string path = dir.write("scene.txt", "camera vfov 20\n"
+                                                    "sphere 0 0 0 -1 lambertian 1 1 1 0 0\n");
     bool threw = false;
     try {
-        load_scene(path.string());
+        load_scene(path);
     } catch (const scene_error& e) {
         threw = true;
         std::string msg = e.what();
         CAPTURE(msg);
-        CHECK(msg.rfind(path.string() + ":2: ", 0) == 0);
+        CHECK(msg.rfind(path + ":2: ", 0) == 0);
         CHECK(msg.find("radius") != std::string::npos);
     }
     CHECK(threw);
-    std::error_code ec;
-    fs::remove(path, ec);
 }
 
 TEST_CASE("parse_scene: conductor and glass materials (exact Fresnel)") {

@@ -29,7 +29,6 @@ constexpr double pi_d = 3.14159265358979323846;
 constexpr double two_pi = 2 * pi_d;
 constexpr double alpha = 0.01; // significance level of every test here
 
-vec3 to_d(const vec3f& v) { return vec3(v.x, v.y, v.z); }
 
 // A right-handed orthonormal frame (t, b, n) about the unit vector n.
 struct frame3 {
@@ -126,7 +125,7 @@ void cosine_counts(const vec3& n, long N, Sampler sample, std::vector<double>& o
     exp.assign(nm * np + 1, 0);
     frame3 f(n);
     for (long i = 0; i < N; ++i) {
-        vec3 d = to_d(sample());
+        vec3 d = sample().to_double();
         double mu = dot(d, n);
         if (mu < -1e-6) {
             obs[nm * np] += 1;
@@ -258,7 +257,7 @@ void sphere_counts(const vec3& axis, long N, Sampler sample, std::vector<double>
     obs.assign(nz * np, 0);
     exp.assign(nz * np, N / double(nz * np));
     for (long i = 0; i < N; ++i) {
-        vec3 p = to_d(sample());
+        vec3 p = sample().to_double();
         REQUIRE(std::fabs(p.length() - 1) < 1e-6);
         obs[bin(dot(p, axis), -1, 1, nz) * np + bin(f.phi(p), 0, two_pi, np)] += 1;
     }
@@ -273,7 +272,7 @@ void ball_counts(const vec3& axis, long N, Sampler sample, std::vector<double>& 
     obs.assign(nr * nz * np, 0);
     exp.assign(nr * nz * np, 0);
     for (long i = 0; i < N; ++i) {
-        vec3 p = to_d(sample());
+        vec3 p = sample().to_double();
         double r = p.length();
         REQUIRE(r <= 1 + 1e-6);
         double z = r > 0 ? dot(p, axis) / r : 0;
@@ -460,7 +459,7 @@ void fuzz_counts(const fuzz_case& fc, long N, pcg32& rng, std::vector<double>& o
             REQUIRE(att.x == 0.9f);
             REQUIRE(att.z == 0.7f);
         }
-        vec3 w = to_d(dir);
+        vec3 w = dir.to_double();
         REQUIRE(std::fabs(w.length() - 1) < 1e-5);
         int c = model.cell(w);
         obs[c < 0 ? cells + 1 : c] += 1;
@@ -536,7 +535,7 @@ long count_reflections(const glass_case& g, float kernel_ior, long N, pcg32& rng
     for (long i = 0; i < N; ++i) {
         vec3f dir, att;
         REQUIRE(scatter_builtin(glass, vec3f(wi), vec3f(n), g.front_face, rng, dir, att));
-        vec3 d = to_d(dir);
+        vec3 d = dir.to_double();
         if (dot(d, n) > 0) {
             ++reflected;
         } else if (kernel_ior == float(g.ior)) {

@@ -16,6 +16,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -32,17 +34,6 @@ const double nan_d = std::numeric_limits<double>::quiet_NaN();
 const double inf_d = std::numeric_limits<double>::infinity();
 constexpr double pi_d = 3.14159265358979323846;
 
-camera small_camera(int w, int h, int spp, int depth) {
-    camera cam;
-    cam.image_width = w;
-    cam.image_height = h;
-    cam.samples_per_pixel = spp;
-    cam.max_depth = depth;
-    cam.quiet = true;
-    cam.threads = 2;
-    return cam;
-}
-
 uint64_t sample_count(const camera& cam) {
     return uint64_t(cam.image_width) * uint64_t(cam.height()) * uint64_t(cam.samples_per_pixel);
 }
@@ -57,11 +48,6 @@ render_result render_checked(const camera& cam, const hittable& world) {
         if (!(std::isfinite(v) && v >= 0)) ++bad;
     CHECK(bad == 0);
     return r;
-}
-
-bool same_bits(const image& a, const image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(float)) == 0;
 }
 
 std::shared_ptr<material> lam(double r, double g, double b) { return std::make_shared<lambertian>(color(r, g, b)); }
@@ -93,7 +79,7 @@ hittable_list stress_scene(const vec3& t, bool dyadic) {
 }
 
 camera stress_camera(const vec3& t, uint64_t seed) {
-    camera cam = small_camera(32, 18, 8, 10);
+    camera cam = test::test_camera(32, 18, 8, 10);
     cam.vfov = 20;
     cam.lookfrom = point3(13, 2, 3) + t;
     cam.lookat = point3(0, 0, 0) + t;
@@ -117,7 +103,7 @@ TEST_CASE("stress: a dyadic scene translated by 1e2, 1e4, 1e5 renders bit-identi
         CAPTURE(s);
         const vec3 t(s, -s, 0.5 * s);
         render_result r = render_checked(stress_camera(t, 7), stress_scene(t, true));
-        CHECK(same_bits(r.img, ref));
+        CHECK(test::same_bits(r.img, ref));
     }
 }
 
@@ -238,7 +224,7 @@ TEST_CASE("stress: no acne on a lone sphere of radius 1e-3 .. 1e5, translated by
             hittable_list world;
             world.add(std::make_shared<sphere>(C, R, std::make_shared<lambertian>(acne_albedo)));
             {
-                camera cam = small_camera(16, 16, 1, 4);
+                camera cam = test::test_camera(16, 16, 1, 4);
                 cam.background = color(1, 1, 1);
                 cam.vfov = 20;
                 cam.lookfrom = C + 2 * R * unit_vector(vec3(1, 0.5, 2));
@@ -248,7 +234,7 @@ TEST_CASE("stress: no acne on a lone sphere of radius 1e-3 .. 1e5, translated by
             }
             {
                 const double h = R >= 1000 ? 2.0 : 2e-3 * R;
-                camera cam = small_camera(24, 24, 1, 4);
+                camera cam = test::test_camera(24, 24, 1, 4);
                 cam.background = color(1, 1, 1);
                 cam.vfov = 40;
                 cam.lookfrom = C + vec3(0, R + h, 0);
@@ -269,7 +255,7 @@ TEST_CASE("stress: no acne with many samples per pixel: every pixel is a mix of 
     const point3 C = 1e5 * shift_dir + vec3(0, -1000, 0);
     hittable_list world;
     world.add(std::make_shared<sphere>(C, 1000, std::make_shared<lambertian>(acne_albedo)));
-    camera cam = small_camera(24, 16, 16, 4);
+    camera cam = test::test_camera(24, 16, 16, 4);
     cam.background = color(1, 1, 1);
     cam.vfov = 30;
     cam.lookfrom = C + vec3(0, 1002, 0);
@@ -309,7 +295,7 @@ TEST_CASE("stress: a camera inside a closed Lambertian sphere sees exactly 0 (no
             const point3 C = s * shift_dir;
             hittable_list world;
             world.add(std::make_shared<sphere>(C, R, lam(1, 1, 1)));
-            camera cam = small_camera(12, 12, 4, 6);
+            camera cam = test::test_camera(12, 12, 4, 6);
             cam.background = color(1, 1, 1);
             cam.vfov = 120;
             cam.lookfrom = C + 0.7 * R * unit_vector(vec3(-1, 2, 0.5));
@@ -347,7 +333,7 @@ TEST_CASE("stress: a camera inside a glass sphere: trapped exactly beyond the cr
             const point3 C = s * shift_dir;
             hittable_list world;
             world.add(std::make_shared<sphere>(C, R, std::make_shared<dielectric>(1.5)));
-            camera cam = small_camera(W, H, 1, 20);
+            camera cam = test::test_camera(W, H, 1, 20);
             cam.background = B;
             cam.vfov = vfov;
             cam.lookfrom = C + vec3(0.9 * R, 0, 0);
@@ -405,7 +391,7 @@ TEST_CASE("stress: exactly tangent camera rays: finite, within [0, B], for every
                 const point3 O = s * shift_dir;
                 hittable_list world;
                 world.add(std::make_shared<sphere>(O + vec3(r, 0, -5), r, m));
-                camera cam = small_camera(1, 1, 1, 8);
+                camera cam = test::test_camera(1, 1, 1, 8);
                 cam.background = B;
                 cam.lookfrom = O;
                 cam.lookat = O + vec3(0, 0, -1);
@@ -434,7 +420,7 @@ TEST_CASE("stress: silhouettes sampled densely: grazing hits stay finite and wit
         world.add(std::make_shared<sphere>(O + vec3(1.05, 0, -10), 0.5, std::make_shared<dielectric>(1.5)));
         // A 48x8 strip, vfov 2, aimed at the spheres' tops: it spans x in [-1.05, 1.05] and y in
         // 0.5 +- 0.17 at distance 10, so the top silhouettes of all three run through it.
-        camera cam = small_camera(48, 8, 64, 12);
+        camera cam = test::test_camera(48, 8, 64, 12);
         cam.background = B;
         cam.vfov = 2;
         cam.lookfrom = O;
@@ -517,7 +503,7 @@ long check_glass_furnace(const image& img, const color& B, int spp) {
 }
 
 camera glass_camera(const point3& at, double dist) {
-    camera cam = small_camera(20, 20, 8, 64);
+    camera cam = test::test_camera(20, 20, 8, 64);
     cam.background = color(0.25, 0.5, 1.0);
     cam.vfov = 30;
     cam.lookfrom = at + dist * unit_vector(vec3(0.3, 0.4, 1));
@@ -682,7 +668,7 @@ hittable_list valid_world() {
 }
 
 camera valid_camera() {
-    camera cam = small_camera(8, 6, 2, 4);
+    camera cam = test::test_camera(8, 6, 2, 4);
     cam.lookfrom = point3(0, 0, 0);
     cam.lookat = point3(0, 0, -1);
     cam.vup = vec3(0, 1, 0);
@@ -907,14 +893,14 @@ TEST_CASE("valid extremes: the camera basis depends only on directions, focus_di
 
     camera c = base;
     c.vup = vec3(0, 1e200, 0);
-    CHECK(same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(render_checked(c, world).img, ref));
     c.vup = vec3(0, 1e-200, 0);
-    CHECK(same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(render_checked(c, world).img, ref));
     c = base;
     c.lookat = point3(0, 0, -1e200);
-    CHECK(same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(render_checked(c, world).img, ref));
     c.lookat = point3(0, 0, -1e-200);
-    CHECK(same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(render_checked(c, world).img, ref));
 
     for (double fd : {1e-12, 1e12}) {
         CAPTURE(fd);

@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -24,25 +26,6 @@ namespace {
 
 const std::string xml_dir = std::string(RTWEEKEND_TEST_DATA) + "/xml";
 const double pi_ = 3.14159265358979323846;
-
-// A scratch directory for files a test writes, unique to this process; removed at the end.
-struct scratch_dir {
-    std::filesystem::path path;
-    explicit scratch_dir(const std::string& name)
-        : path(std::filesystem::temp_directory_path() /
-               ("rtweekend_test_xml_" + name + "_" + std::to_string(::getpid()))) {
-        std::filesystem::remove_all(path);
-        std::filesystem::create_directories(path);
-    }
-    ~scratch_dir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path, ec);
-    }
-    std::string write(const std::string& file, const std::string& text) const {
-        std::ofstream(path / file, std::ios::binary) << text;
-        return (path / file).string();
-    }
-};
 
 // `text` with every `from` replaced by `to`.
 std::string replace_all(std::string text, const std::string& from, const std::string& to) {
@@ -176,7 +159,7 @@ std::string scene_with(const std::string& objects, const std::string& camera = d
 // Loads `text` as bad.xml and checks the single-line message names the file (and the line, when
 // given) and contains every fragment.
 void check_xml_error(const std::string& text, const std::vector<std::string>& fragments, int line = 0) {
-    scratch_dir dir("error");
+    test::scratch_dir dir("error");
     std::string path = dir.write("bad.xml", text);
     std::string message;
     try {
@@ -302,7 +285,7 @@ TEST_CASE("xml scene: every level-1 element of the test scene") {
 TEST_CASE("xml scene: comments, CRLF, one line and element order do not change the scene") {
     const std::string pretty = read_file(xml_dir + "/scene.xml");
     const std::string expected = dump(load_xml_scene(xml_dir + "/scene.xml"));
-    scratch_dir dir("layout");
+    test::scratch_dir dir("layout");
     std::filesystem::create_directories(dir.path / "meshes");
     std::filesystem::copy_file(xml_dir + "/meshes/tetra.ply", dir.path / "meshes" / "tetra.ply");
 
@@ -344,7 +327,7 @@ TEST_CASE("xml scene: comments, CRLF, one line and element order do not change t
 }
 
 TEST_CASE("xml scene: optional settings take their defaults, materials may be sparse") {
-    whitted_scene s = load_xml_scene(scratch_dir("defaults").write("d.xml", scene_with("")));
+    whitted_scene s = load_xml_scene(test::scratch_dir("defaults").write("d.xml", scene_with("")));
     check_vec(s.background, 0, 0, 0);
     CHECK(s.shadow_ray_epsilon == 1e-3);
     CHECK(s.intersection_test_epsilon == 1e-6);
@@ -356,7 +339,7 @@ TEST_CASE("xml scene: optional settings take their defaults, materials may be sp
 }
 
 TEST_CASE("xml scene: 1-based ids, vertexOffset and ZeroBasedIndexing") {
-    scratch_dir dir("ids");
+    test::scratch_dir dir("ids");
     const std::string vertices = "<VertexData>10 0 0  11 0 0  12 0 0  13 0 0  14 0 0  15 0 0</VertexData>";
     auto mesh_of = [&](const std::string& top, const std::string& faces) {
         std::string text = "<Scene>" + top + "<Cameras>" + default_camera + "</Cameras>" +
@@ -404,7 +387,7 @@ TEST_CASE("xml scene: 1-based ids, vertexOffset and ZeroBasedIndexing") {
 TEST_CASE("xml scene: smooth shading gives area-weighted vertex normals") {
     // Vertex 1 is shared by a face in the z = 0 plane (cross product (0,0,4), area 2) and one in
     // the x = 0 plane (cross product (-1,0,0), area 1/2): its normal is (-1,0,4)/sqrt(17).
-    scratch_dir dir("smooth");
+    test::scratch_dir dir("smooth");
     std::string text = "<Scene><Cameras>" + default_camera +
                        "</Cameras><Materials><Material id=\"1\"/></Materials>"
                        "<VertexData>0 0 0  2 0 0  0 2 0  0 0 1  0 1 0</VertexData><Objects>"
@@ -458,7 +441,7 @@ TEST_CASE("xml scene: smooth shading gives area-weighted vertex normals") {
 }
 
 TEST_CASE("xml scene: a file that cannot be read or is not well-formed XML") {
-    scratch_dir dir("files");
+    test::scratch_dir dir("files");
     CHECK_THROWS_WITH_AS(load_xml_scene((dir.path / "nope.xml").string()),
                          doctest::Contains("nope.xml: cannot open XML scene file"), scene_error);
     CHECK_THROWS_WITH_AS(load_xml_scene(dir.path.string()), doctest::Contains("is a directory"), scene_error);
@@ -615,7 +598,7 @@ TEST_CASE("xml scene: bad faces and PLY files") {
     check_xml_error(scene_with("<Mesh id=\"1\"><Material>1</Material><Faces plyFile=\"a.ply\">1 2 3</Faces></Mesh>"),
                     {"<Faces> has both a plyFile and indices"});
     // A damaged PLY file beside the XML file: both files and the PLY's own problem are named.
-    scratch_dir dir("ply");
+    test::scratch_dir dir("ply");
     dir.write("broken.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                             "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");

@@ -15,7 +15,8 @@
 #include "fresnel.h"
 #include "../io/image_write.h"
 #include "ray_offset.h"
-#include "path_tracer.h"
+#include "render_settings.h"
+#include "scheduler.h"
 #include "compiled_scene.h"
 #include "../whitted_scene.h"
 
@@ -301,15 +302,12 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;
     const vec3f eye(c.position - compiled_.origin);
 
-    camera settings; // run_tiles reads the image size, the sample count and the thread settings
+    render_settings settings; // one ray through the centre of each pixel
     settings.samples_per_pixel = 1;
     settings.threads = options_.threads;
     settings.quiet = options_.quiet;
-    camera_frame frame;
-    frame.width = c.width;
-    frame.height = c.height;
-    render_result out = detail::run_tiles(
-        settings, frame,
+    render_result out = render_samples(
+        c.width, c.height, settings,
         [&](int x, int y, int, pcg32&, uint64_t& rays) {
             vec3 dir = corner + (x + 0.5) * du + (y + 0.5) * dv;
             ray3f r;

@@ -1,0 +1,52 @@
+#pragma once
+// camera_frame: the geometry that turns a pixel position into a ray, in float and relative to the
+// camera's position (the compiled scene is stored relative to the same point). The book's camera
+// (camera.h) computes one from its settings.
+
+#include "../vec3.h"
+#include "rng.h"
+#include "sampling.h"
+#include "vec3f.h"
+
+namespace rt {
+
+struct camera_frame {
+    int width = 0, height = 0;
+    point3 position;            // where rays start (lookfrom), in world coordinates
+    vec3f pixel00;              // centre of the top-left pixel, relative to position
+    vec3f pixel_delta_u;        // offset to the pixel on the right
+    vec3f pixel_delta_v;        // offset to the pixel below
+    vec3f defocus_disk_u;       // defocus disk horizontal radius
+    vec3f defocus_disk_v;       // defocus disk vertical radius
+    bool thin_lens = false;     // defocus_angle > 0: rays start on the lens disk
+
+    // The ray through image position (x, y), in pixels from the top-left corner of the image
+    // ((i + 0.5, j + 0.5) is the centre of pixel (i, j)), starting at lens position (lu, lv) in
+    // the unit disk. Direction normalised; origin relative to `position`.
+    ray3f generate(float x, float y, float lu = 0, float lv = 0) const {
+        vec3f target = pixel00 + (x - 0.5f) * pixel_delta_u + (y - 0.5f) * pixel_delta_v;
+        vec3f origin = thin_lens ? lu * defocus_disk_u + lv * defocus_disk_v : vec3f{};
+        return {origin, normalize(target - origin)};
+    }
+
+    // A camera ray for pixel (x, y): jittered uniformly over the pixel (through its centre when
+    // the pixel takes a single sample, as in the book's chapters before antialiasing), from a
+    // uniform point of the lens disk when the camera has a thin lens.
+    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng) const {
+        float jx = 0.5f, jy = 0.5f;
+        if (samples_per_pixel > 1) {
+            jx = rng.next_float();
+            jy = rng.next_float();
+        }
+        float lu = 0, lv = 0;
+        if (thin_lens) {
+            float u1 = rng.next_float(), u2 = rng.next_float();
+            vec3f d = sample_unit_disk(u1, u2);
+            lu = d.x;
+            lv = d.y;
+        }
+        return generate(float(x) + jx, float(y) + jy, lu, lv);
+    }
+};
+
+} // namespace rt

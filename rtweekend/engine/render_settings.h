@@ -1,0 +1,41 @@
+#pragma once
+// render_settings: how a render samples the image, apart from what it looks at (the camera) and
+// what it traces (the scene). The scheduler (scheduler.h) and the integrators read these; the
+// book's camera keeps the same settings as its own public members and hands them over
+// (camera::settings()).
+
+#include "../scene_error.h"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+namespace rt {
+
+struct render_settings {
+    int samples_per_pixel = 10; // most samples a pixel takes (all of them without adaptive sampling)
+    int max_depth = 10;         // most rays in one path (the path tracer)
+    uint64_t seed = 0;          // the same seed gives the same image at any thread count
+    int threads = 0;            // worker threads; 0 = one per hardware thread
+    bool quiet = false;         // no progress or statistics on stderr
+    // Adaptive sampling (measure/adaptive.h), off while adaptive_error is 0: every pixel takes
+    // adaptive_min_samples samples, then more until its error estimate is small enough.
+    double adaptive_error = 0;
+    int adaptive_min_samples = 16;
+
+    // Throws scene_error "<owner>: <problem>" for a setting that cannot be rendered.
+    void check(const std::string& owner = "render settings") const {
+        auto require = [&](bool ok, const std::string& problem) {
+            if (!ok) throw scene_error(owner + ": " + problem);
+        };
+        require(samples_per_pixel >= 1, "samples_per_pixel must be at least 1, got " + std::to_string(samples_per_pixel));
+        require(max_depth >= 1, "max_depth must be at least 1, got " + std::to_string(max_depth));
+        require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
+        require(std::isfinite(adaptive_error) && adaptive_error >= 0,
+                "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
+        require(adaptive_min_samples >= 2, "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
+                                               std::to_string(adaptive_min_samples));
+    }
+};
+
+} // namespace rt

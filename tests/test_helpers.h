@@ -1,0 +1,74 @@
+#pragma once
+// What several test files need: a scratch directory, a small quiet camera, bit-for-bit image
+// comparison.
+
+#include <rtweekend/camera.h>
+#include <rtweekend/engine/image.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <unistd.h>
+
+namespace test {
+
+// A fresh, empty directory under the system's temporary directory, removed with everything in it
+// at scope exit. Unique per process, object and moment, so tests may run in parallel.
+struct scratch_dir {
+    std::filesystem::path path;
+
+    explicit scratch_dir(const std::string& label = "dir") {
+        static std::atomic<int> counter{0};
+        auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+        path = std::filesystem::temp_directory_path() /
+               ("rtweekend_test_" + label + "_" + std::to_string(::getpid()) + "_" + std::to_string(stamp) + "_" +
+                std::to_string(counter++));
+        std::filesystem::create_directories(path);
+    }
+    ~scratch_dir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    scratch_dir(const scratch_dir&) = delete;
+    scratch_dir& operator=(const scratch_dir&) = delete;
+
+    // The path of `name` inside the directory.
+    std::string file(const std::string& name) const { return (path / name).string(); }
+    // Writes `bytes` to `name` inside the directory and returns its path.
+    std::string write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(path / name, std::ios::binary) << bytes;
+        return file(name);
+    }
+    // The names of the entries in the directory.
+    std::vector<std::string> entries() const {
+        std::vector<std::string> names;
+        for (const auto& e : std::filesystem::directory_iterator(path)) names.push_back(e.path().filename().string());
+        return names;
+    }
+};
+
+// A w x h camera at the book's defaults otherwise, quiet, on two threads.
+inline rt::camera test_camera(int w, int h, int spp, int depth) {
+    rt::camera cam;
+    cam.image_width = w;
+    cam.image_height = h;
+    cam.samples_per_pixel = spp;
+    cam.max_depth = depth;
+    cam.quiet = true;
+    cam.threads = 2;
+    return cam;
+}
+
+// Whether two images have the same size and the same bits in every float.
+inline bool same_bits(const rt::image& a, const rt::image& b) {
+    return a.width() == b.width() && a.height() == b.height() && a.data().size() == b.data().size() &&
+           std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(float)) == 0;
+}
+
+} // namespace test
