@@ -36,7 +36,7 @@
 #include <rtweekend/io/ray_file.h>
 #include <rtweekend/camera.h>
 #include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/compiled_scene.h>
+#include <rtweekend/engine/scene_compiler.h>
 #include <rtweekend/io/scene_file.h>
 
 #include <sys/resource.h>
@@ -172,7 +172,7 @@ void bench_scene(const bench_options& o) {
     const rt::bvh_stats& bs = compiled.bvh.stats;
     std::printf("scene %s: %zu spheres, %zu triangles; BVH built in %.2f ms (scene compiled in %.2f ms): "
                 "%zu nodes, %zu leaves, depth %d, %zu bytes of geometry and BVH\n",
-                o.scene.c_str(), compiled.sphere_count, compiled.triangle_count, bs.build_ms, compile_s * 1e3, bs.nodes,
+                o.scene.c_str(), compiled.spheres.count, compiled.triangles.count, bs.build_ms, compile_s * 1e3, bs.nodes,
                 bs.leaves, bs.depth, compiled.geometry_bytes());
 
     std::vector<double> seconds, mrays;
@@ -262,10 +262,10 @@ void print_mesh_summary(const std::string& name, const compiled_mesh& m) {
     const rt::bvh_stats& bs = m.scene.bvh.stats;
     std::printf("mesh %s: %zu triangles (%zu degenerate left out), loaded in %.0f ms; BVH built in %.0f ms: %zu nodes, "
                 "%zu leaves, depth %d; bytes_per_triangle %.1f (BVH %.1f + triangles %.1f)\n",
-                name.c_str(), m.triangles, m.scene.degenerate_triangles, m.load_ms, bs.build_ms, bs.nodes, bs.leaves,
-                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.triangle_count),
-                double(bs.bytes()) / double(m.scene.triangle_count),
-                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.triangle_count));
+                name.c_str(), m.triangles, m.scene.triangles.degenerate, m.load_ms, bs.build_ms, bs.nodes, bs.leaves,
+                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.triangles.count),
+                double(bs.bytes()) / double(m.scene.triangles.count),
+                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.triangles.count));
 }
 
 compiled_mesh load_and_compile(const std::string& path) {
@@ -313,10 +313,10 @@ auto closest_hit(const rt::compiled_scene& scene) {
 // The mesh's bounding box, in float.
 void mesh_bounds(const rt::compiled_scene& s, rt::vec3f& lo, rt::vec3f& hi) {
     rt::box3f box;
-    for (size_t i = 0; i < s.triangle_count; ++i)
+    for (size_t i = 0; i < s.triangles.count; ++i)
         for (int v = 0; v < 3; ++v)
-            box.grow(rt::vec3f{s.triangle_vertex[size_t(3 * v)][i], s.triangle_vertex[size_t(3 * v + 1)][i],
-                               s.triangle_vertex[size_t(3 * v + 2)][i]});
+            box.grow(rt::vec3f{s.triangles.vertex[size_t(3 * v)][i], s.triangles.vertex[size_t(3 * v + 1)][i],
+                               s.triangles.vertex[size_t(3 * v + 2)][i]});
     lo = box.lo;
     hi = box.hi;
 }
@@ -354,13 +354,13 @@ scaling_row measure(const std::string& what, const rt::compiled_scene& scene, si
     rt::vec3f lo, hi;
     rt::box3f box;
     // Bounds of everything: spheres and triangles.
-    for (size_t i = 0; i < scene.sphere_count; ++i) {
-        rt::vec3f c{scene.sphere_x[i], scene.sphere_y[i], scene.sphere_z[i]};
-        rt::vec3f r{scene.sphere_r[i], scene.sphere_r[i], scene.sphere_r[i]};
+    for (size_t i = 0; i < scene.spheres.count; ++i) {
+        rt::vec3f c{scene.spheres.x[i], scene.spheres.y[i], scene.spheres.z[i]};
+        rt::vec3f r{scene.spheres.r[i], scene.spheres.r[i], scene.spheres.r[i]};
         box.grow(c - r);
         box.grow(c + r);
     }
-    if (scene.triangle_count > 0) {
+    if (scene.triangles.count > 0) {
         mesh_bounds(scene, lo, hi);
         box.grow(lo);
         box.grow(hi);
@@ -398,7 +398,7 @@ void bench_scaling(const bench_options& o) {
         auto mesh = std::make_shared<rt::triangle_mesh>(std::move(positions), sub.triangles,
                                                         std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5)));
         compiled_mesh m = compile_mesh(mesh);
-        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangle_count, o));
+        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangles.count, o));
     }
 
     std::printf("| primitives | scene | BVH build ms | bytes/primitive | ns/ray primary | ns/ray diffuse | ns/ray shadow |\n");

@@ -29,32 +29,32 @@ bool contains(const bvh_node8& node, int slot, const box3f& b) {
 
 struct checker {
     const bvh8& bvh;
-    const std::vector<bvh_primitive>& prims; // by type, then index: prims_of[type][index]
-    std::vector<std::vector<const bvh_primitive*>> by_type;
+    const std::vector<bvh_primitive>& prims; // by kind, then index: by_kind[kind][index]
+    std::vector<std::vector<const bvh_primitive*>> by_kind;
     std::vector<std::vector<int>> seen;
     uint32_t max_leaf;
     int problems = 0;
 
     checker(const bvh8& b, const std::vector<bvh_primitive>& p, uint32_t max_leaf)
-        : bvh(b), prims(p), by_type(primitive_type_count), seen(primitive_type_count), max_leaf(max_leaf) {
+        : bvh(b), prims(p), by_kind(shape_kind_count), seen(shape_kind_count), max_leaf(max_leaf) {
         for (const auto& q : prims) {
-            auto t = size_t(q.type);
-            if (by_type[t].size() <= q.index) by_type[t].resize(q.index + 1);
-            by_type[t][q.index] = &q;
+            auto t = size_t(q.kind);
+            if (by_kind[t].size() <= q.index) by_kind[t].resize(q.index + 1);
+            by_kind[t][q.index] = &q;
         }
-        for (size_t t = 0; t < by_type.size(); ++t) seen[t].assign(by_type[t].size(), 0);
+        for (size_t t = 0; t < by_kind.size(); ++t) seen[t].assign(by_kind[t].size(), 0);
     }
 
     // Every primitive under `ref`, checked to lie inside `box` (when given).
     void walk(uint32_t ref, const bvh_node8* parent, int slot) {
         if (bvh_ref::is_leaf(ref)) {
-            auto t = size_t(bvh_ref::type(ref));
+            auto t = size_t(bvh_ref::kind(ref));
             uint32_t first = bvh_ref::first(ref), count = bvh_ref::count(ref);
             if (count > max_leaf) ++problems;
             for (uint32_t k = first; k < first + count; ++k) {
                 uint32_t index = bvh.order[t].at(k);
                 ++seen[t].at(index);
-                if (parent && !contains(*parent, slot, by_type[t][index]->bounds)) ++problems;
+                if (parent && !contains(*parent, slot, by_kind[t][index]->bounds)) ++problems;
             }
             return;
         }
@@ -79,7 +79,7 @@ TEST_CASE("bvh: every primitive exactly once, leaves bounded and of one kind, bo
     uint32_t spheres = 0, triangles = 0;
     for (int i = 0; i < 5000; ++i) {
         bool tri = rng.next_float() < 0.7f;
-        prims.push_back({random_box(rng, 100, tri ? 1.0f : 3.0f), tri ? primitive_type::triangle : primitive_type::sphere,
+        prims.push_back({random_box(rng, 100, tri ? 1.0f : 3.0f), tri ? shape_kind::triangle : shape_kind::sphere,
                          tri ? triangles++ : spheres++});
     }
     bvh_build_options options;
@@ -120,7 +120,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     // Three spheres: no nodes, the root is one leaf (a tiny scene needs no hierarchy).
     std::vector<bvh_primitive> three;
     pcg32 rng = sample_rng(9, 0, 0);
-    for (uint32_t i = 0; i < 3; ++i) three.push_back({random_box(rng, 10, 1), primitive_type::sphere, i});
+    for (uint32_t i = 0; i < 3; ++i) three.push_back({random_box(rng, 10, 1), shape_kind::sphere, i});
     bvh8 small = build_bvh8(three);
     CHECK(small.nodes.empty());
     REQUIRE(bvh_ref::is_leaf(small.root));
@@ -129,7 +129,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
 
     // Two kinds in a tiny scene: split by kind, since a leaf holds one kind.
     std::vector<bvh_primitive> mixed = three;
-    mixed.push_back({random_box(rng, 10, 1), primitive_type::triangle, 0});
+    mixed.push_back({random_box(rng, 10, 1), shape_kind::triangle, 0});
     bvh8 m = build_bvh8(mixed);
     REQUIRE_FALSE(bvh_ref::is_leaf(m.root));
     checker cm(m, mixed, bvh_build_options{}.max_leaf_size);
@@ -140,7 +140,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     // bounded leaves and a bounded depth (object-median splits).
     std::vector<bvh_primitive> same;
     box3f b = random_box(rng, 1, 1);
-    for (uint32_t i = 0; i < 10000; ++i) same.push_back({b, primitive_type::triangle, i});
+    for (uint32_t i = 0; i < 10000; ++i) same.push_back({b, shape_kind::triangle, i});
     bvh8 s = build_bvh8(same);
     checker cs(s, same, bvh_build_options{}.max_leaf_size);
     cs.walk(s.root, nullptr, 0);
@@ -159,14 +159,28 @@ TEST_CASE("bvh: small and degenerate inputs") {
 }
 
 TEST_CASE("bvh: leaf references round-trip their fields") {
-    uint32_t ref = bvh_ref::make_leaf(primitive_type::triangle, 12345678, 16);
+    uint32_t ref = bvh_ref::make_leaf(shape_kind::triangle, 12345678, 16);
     CHECK(bvh_ref::is_leaf(ref));
-    CHECK(bvh_ref::type(ref) == primitive_type::triangle);
+    CHECK(bvh_ref::kind(ref) == shape_kind::triangle);
     CHECK(bvh_ref::first(ref) == 12345678u);
     CHECK(bvh_ref::count(ref) == 16u);
-    ref = bvh_ref::make_leaf(primitive_type::sphere, bvh_ref::max_first, 1);
-    CHECK(bvh_ref::type(ref) == primitive_type::sphere);
+    ref = bvh_ref::make_leaf(shape_kind::sphere, bvh_ref::max_first, 1);
+    CHECK(bvh_ref::kind(ref) == shape_kind::sphere);
     CHECK(bvh_ref::first(ref) == bvh_ref::max_first);
     CHECK(bvh_ref::count(ref) == 1u);
     CHECK_FALSE(bvh_ref::is_leaf(42));
+    // Every kind the 3 bits can name (1 + kind in bits 29-31: kinds 0 to 6), with the largest
+    // first and count, decodes to itself and never to an inner node; the largest inner node
+    // index is not a leaf.
+    CHECK(bvh_ref::max_first == (1u << 25) - 1);
+    for (uint32_t k = 0; k < uint32_t(bvh_ref::max_shape_kinds); ++k) {
+        CAPTURE(k);
+        uint32_t leaf = bvh_ref::make_leaf(static_cast<shape_kind>(k), bvh_ref::max_first - 15, 16);
+        CHECK(bvh_ref::is_leaf(leaf));
+        CHECK(uint32_t(bvh_ref::kind(leaf)) == k);
+        CHECK(bvh_ref::first(leaf) == bvh_ref::max_first - 15);
+        CHECK(bvh_ref::count(leaf) == 16u);
+        CHECK(leaf != bvh_ref::empty);
+    }
+    CHECK_FALSE(bvh_ref::is_leaf(bvh_ref::max_nodes - 1));
 }

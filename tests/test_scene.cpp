@@ -1,11 +1,11 @@
-// compile_scene (rtweekend/engine/compiled_scene.h): what the renderer builds from the book's world, and the
+// compile_scene (rtweekend/engine/scene_compiler.h): what the renderer builds from the book's world, and the
 // invalid input it must reject with scene_error.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/compiled_scene.h>
+#include <rtweekend/engine/scene_compiler.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>
@@ -63,12 +63,12 @@ TEST_CASE("compile_scene: positions are relative to the origin, computed in doub
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(1e8 + 0.5, -3, 2.25), 0.75, grey()));
     compiled_scene s = compile_scene(world, point3(1e8, 0, 0));
-    REQUIRE(s.sphere_count == 1);
-    CHECK(s.sphere_x[0] == 0.5f);
-    CHECK(s.sphere_y[0] == -3.0f);
-    CHECK(s.sphere_z[0] == 2.25f);
-    CHECK(s.sphere_r[0] == 0.75f);
-    CHECK(s.sphere_r2[0] == 0.5625f); // 0.75^2, exact
+    REQUIRE(s.spheres.count == 1);
+    CHECK(s.spheres.x[0] == 0.5f);
+    CHECK(s.spheres.y[0] == -3.0f);
+    CHECK(s.spheres.z[0] == 2.25f);
+    CHECK(s.spheres.r[0] == 0.75f);
+    CHECK(s.spheres.r2[0] == 0.5625f); // 0.75^2, exact
     CHECK(s.origin.x() == 1e8);
 
     // The hit is found where it should be: a ray from relative (0, -3, 2.25) along +x starts 0.5
@@ -94,31 +94,31 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     world.add(std::make_shared<sphere>(point3(4, 0, -5), 1, shared));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
 
-    CHECK(s.sphere_count == 5);
+    CHECK(s.spheres.count == 5);
     // Five spheres need no BVH: the root is one leaf holding all of them, in input order.
     CHECK(s.bvh.nodes.empty());
     CHECK(bvh_ref::is_leaf(s.bvh.root));
     CHECK(bvh_ref::count(s.bvh.root) == 5);
     // Arrays padded by one SIMD width (leaf loads read that far), padding spheres unhittable
     // (negative squared radius).
-    CHECK(s.sphere_x.size() == 5 + floatv::width);
-    CHECK(s.sphere_r2.size() == 5 + floatv::width);
-    for (size_t i = 5; i < s.sphere_r2.size(); ++i) CHECK(s.sphere_r2[i] < 0);
+    CHECK(s.spheres.x.size() == 5 + floatv::width);
+    CHECK(s.spheres.r2.size() == 5 + floatv::width);
+    for (size_t i = 5; i < s.spheres.r2.size(); ++i) CHECK(s.spheres.r2[i] < 0);
     CHECK(s.custom_objects.empty());
     CHECK_FALSE(s.has_custom_materials);
 
     // One table entry per distinct material, shared by pointer.
     REQUIRE(s.materials.size() == 3);
-    CHECK(s.sphere_material[0] == s.sphere_material[1]);
-    CHECK(s.sphere_material[0] == s.sphere_material[4]);
-    const material_desc& lam = s.materials[s.sphere_material[0]];
+    CHECK(s.spheres.material[0] == s.spheres.material[1]);
+    CHECK(s.spheres.material[0] == s.spheres.material[4]);
+    const material_desc& lam = s.materials[s.spheres.material[0]];
     CHECK(lam.kind == material_kind::lambertian);
     CHECK(lam.albedo.x == 0.5f);
-    const material_desc& met = s.materials[s.sphere_material[2]];
+    const material_desc& met = s.materials[s.spheres.material[2]];
     CHECK(met.kind == material_kind::metal);
     CHECK(met.fuzz == 0.4f);
     CHECK(met.albedo.z == 0.3f);
-    const material_desc& gl = s.materials[s.sphere_material[3]];
+    const material_desc& gl = s.materials[s.spheres.material[3]];
     CHECK(gl.kind == material_kind::dielectric);
     CHECK(gl.refraction_index == 1.33f);
 
@@ -126,14 +126,14 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     hittable_list many;
     for (int i = 0; i < 17; ++i) many.add(std::make_shared<sphere>(point3(i, 0, -5), 0.1, shared));
     compiled_scene m = compile_scene(many, point3(0, 0, 0));
-    CHECK(m.sphere_count == 17);
-    CHECK(m.sphere_x.size() == 17 + floatv::width);
+    CHECK(m.spheres.count == 17);
+    CHECK(m.spheres.x.size() == 17 + floatv::width);
     CHECK_FALSE(m.bvh.nodes.empty());
 
     // Empty world: nothing to hit.
     hittable_list none;
     compiled_scene e = compile_scene(none, point3(0, 0, 0));
-    CHECK(e.sphere_count == 0);
+    CHECK(e.spheres.count == 0);
     ray3f r;
     r.dir = {0, 0, -1};
     surface_hit hit;

@@ -1,12 +1,12 @@
 // Ray-sphere intersection: sphere::hit (the book's double API, rtweekend/sphere.h), sphere_roots,
-// and the renderer's float closest-hit query compiled_scene::intersect (rtweekend/engine/compiled_scene.h).
+// and the renderer's float closest-hit query compiled_scene::intersect (rtweekend/engine/scene_compiler.h).
 //
 // Reference values are analytic (worked out in the comments) or come from the textbook quadratic
 // formula evaluated in long double.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
-#include <rtweekend/engine/compiled_scene.h>
+#include <rtweekend/engine/scene_compiler.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>
@@ -267,7 +267,7 @@ TEST_CASE("compiled_scene::intersect from outside") {
     // relative to it. Centre = eye + (0,0,-5), r = 1: t = 4.
     const point3 eye(13, 2, 3);
     compiled_scene s = compile_one(eye + vec3(0, 0, -5), 1, eye, world);
-    CHECK(s.sphere_count == 1);
+    CHECK(s.spheres.count == 1);
     surface_hit hit;
     REQUIRE(s.intersect(make_ray(s, eye, vec3(0, 0, -1)), hit));
     CHECK(hit.t == doctest::Approx(4).epsilon(1e-6));
@@ -351,7 +351,7 @@ TEST_CASE("compiled_scene::intersect picks the closest of many spheres") {
     std::shuffle(order.begin(), order.end(), gen);
     for (int k : order) world.add(std::make_shared<sphere>(point3(0, 0, -3.0 * k), 1, grey()));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
-    CHECK(s.sphere_count == 40);
+    CHECK(s.spheres.count == 40);
     surface_hit hit;
     REQUIRE(s.intersect(make_ray(s, point3(0, 0, 0), vec3(0, 0, -1)), hit));
     CHECK(hit.t == doctest::Approx(2).epsilon(1e-6));

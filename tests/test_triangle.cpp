@@ -7,7 +7,7 @@
 #include <rtweekend/mesh.h>
 #include <rtweekend/engine/rng.h>
 #include <rtweekend/engine/sampling.h>
-#include <rtweekend/engine/compiled_scene.h>
+#include <rtweekend/engine/scene_compiler.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/triangle.h>
 
@@ -110,8 +110,8 @@ TEST_CASE("triangle: compiled hit matches the hand-worked values, in float") {
     hittable_list world;
     world.add(std::make_shared<triangle>(point3(0, 0, -1), point3(1, 0, -1), point3(0, 1, -1), grey()));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
-    CHECK(s.triangle_count == 1);
-    CHECK(s.sphere_count == 0);
+    CHECK(s.triangles.count == 1);
+    CHECK(s.spheres.count == 0);
     surface_hit hit;
     REQUIRE(s.intersect(make_ray(s, point3(0, 0, 0), vec3(0.25, 0.25, -1)), hit));
     CHECK(hit.t == doctest::Approx(std::sqrt(0.25 * 0.25 * 2 + 1)).epsilon(1e-6));
@@ -173,7 +173,7 @@ TEST_CASE("triangle: a closed mesh has no leaks, near and far from the origin") 
         hittable_list world;
         world.add(icosphere(centre, 2.0, 3)); // 1280 triangles
         compiled_scene s = compile_scene(world, centre + vec3(0.3, -0.2, 0.1));
-        CHECK(s.triangle_count == 1280);
+        CHECK(s.triangles.count == 1280);
         CHECK_FALSE(s.bvh.nodes.empty());
         pcg32 rng = sample_rng(11, 0, 0);
         surface_hit hit;
@@ -214,8 +214,8 @@ TEST_CASE("BVH: closest hits of spheres and triangles agree with brute force in 
         world.add(std::make_shared<sphere>(point3(20 * u() - 10, 20 * u() - 10, 20 * u() - 10), 0.05 + 0.5 * u(), m));
     const point3 origin(1, 2, 3);
     compiled_scene s = compile_scene(world, origin);
-    CHECK(s.triangle_count == 3000);
-    CHECK(s.sphere_count == 300);
+    CHECK(s.triangles.count == 3000);
+    CHECK(s.spheres.count == 300);
     CHECK(s.bvh.stats.depth >= 2);
 
     int disagree = 0, hits = 0;
@@ -262,8 +262,8 @@ TEST_CASE("triangle: invalid input is rejected, degenerate mesh triangles are sk
         w.add(std::make_shared<triangle_mesh>(std::vector<point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
                                               std::vector<std::array<uint32_t, 3>>{{0, 1, 2}, {0, 1, 1}}, m));
         compiled_scene s = compile_scene(w, point3(0, 0, 5));
-        CHECK(s.triangle_count == 1);
-        CHECK(s.degenerate_triangles == 1);
+        CHECK(s.triangles.count == 1);
+        CHECK(s.triangles.degenerate == 1);
     }
     {
         hittable_list w;

@@ -13,13 +13,14 @@
 // child that starts beyond the closest hit found so far; an any-hit (shadow) query stops at the
 // first hit.
 //
-// The tree knows primitives only as typed boxes. A leaf holds up to 16 primitives of one type,
-// stored contiguously: `order` tells the caller in which order to lay out each type's data so
-// that a leaf is a range [first, first + count) of it.
+// The tree knows primitives only as boxes of a shape kind (leaf_query.h). A leaf holds up to 16
+// primitives of one kind, stored contiguously: `order` tells the caller in which order to lay out
+// each kind's data so that a leaf is a range [first, first + count) of it.
 //
 // A scene of a few primitives gets no nodes at all: its root is a single leaf.
 
 #include "../scene_error.h"
+#include "leaf_query.h"
 #include "vec3f.h"
 
 #include <algorithm>
@@ -63,31 +64,32 @@ struct box3f {
     }
 };
 
-// The kinds of primitive a leaf can hold (leaves hold one kind each).
-enum class primitive_type : uint8_t { sphere = 0, triangle = 1 };
-inline constexpr int primitive_type_count = 2;
-
 // What the builder needs to know about one primitive.
 struct bvh_primitive {
     box3f bounds;
-    primitive_type type = primitive_type::sphere;
-    uint32_t index = 0; // the primitive's number among those of its type
+    shape_kind kind = shape_kind::sphere;
+    uint32_t index = 0; // the primitive's number among those of its kind
 };
 
-// A reference to a child: an inner node's index, or a leaf packed into the same 32 bits:
-//   bit 31: leaf   bit 30: type   bits 26-29: count - 1 (1..16)   bits 0-25: first
+// A reference to a child, 32 bits: an inner node's index, or a leaf packed into the same bits:
+//   bits 29-31: 0 for an inner node (its index in bits 0-28), or 1 + the shape kind of a leaf
+//   bits 25-28: a leaf's count - 1 (1..16)        bits 0-24: its first primitive
+// so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives.
 namespace bvh_ref {
-inline constexpr uint32_t leaf_bit = 1u << 31;
+inline constexpr uint32_t kind_shift = 29;
+inline constexpr int max_shape_kinds = 7;
 inline constexpr uint32_t max_leaf_size = 16;
-inline constexpr uint32_t max_first = (1u << 26) - 1;
+inline constexpr uint32_t max_first = (1u << 25) - 1;
+inline constexpr uint32_t max_nodes = 1u << kind_shift;
 inline constexpr uint32_t empty = 0xFFFFFFFFu; // the root of a tree without primitives
+static_assert(shape_kind_count <= max_shape_kinds, "a leaf reference names at most seven shape kinds");
 
-constexpr bool is_leaf(uint32_t ref) { return (ref & leaf_bit) != 0; }
-constexpr primitive_type type(uint32_t ref) { return static_cast<primitive_type>((ref >> 30) & 1u); }
-constexpr uint32_t count(uint32_t ref) { return ((ref >> 26) & 15u) + 1; }
+constexpr bool is_leaf(uint32_t ref) { return ref >= max_nodes; }
+constexpr shape_kind kind(uint32_t ref) { return static_cast<shape_kind>((ref >> kind_shift) - 1); }
+constexpr uint32_t count(uint32_t ref) { return ((ref >> 25) & 15u) + 1; }
 constexpr uint32_t first(uint32_t ref) { return ref & max_first; }
-constexpr uint32_t make_leaf(primitive_type t, uint32_t first, uint32_t count) {
-    return leaf_bit | (uint32_t(t) << 30) | ((count - 1) << 26) | first;
+constexpr uint32_t make_leaf(shape_kind k, uint32_t first, uint32_t count) {
+    return ((uint32_t(k) + 1) << kind_shift) | ((count - 1) << 25) | first;
 }
 } // namespace bvh_ref
 
@@ -120,8 +122,8 @@ class bvh8 {
   public:
     std::vector<bvh_node8> nodes;
     uint32_t root = bvh_ref::empty;
-    // order[type][k]: which primitive of that type goes to position k of the type's leaf storage.
-    std::array<std::vector<uint32_t>, primitive_type_count> order;
+    // order[kind][k]: which primitive of that kind goes to position k of the kind's leaf storage.
+    std::array<std::vector<uint32_t>, shape_kind_count> order;
     bvh_stats stats;
 };
 
@@ -144,7 +146,7 @@ class bvh_builder {
         : options_(options), refs_(prims.size()) {
         options_.max_leaf_size = std::clamp<uint32_t>(options_.max_leaf_size, 1, bvh_ref::max_leaf_size);
         options_.bins = std::clamp(options_.bins, 2, max_bins);
-        for (size_t i = 0; i < prims.size(); ++i) refs_[i] = {prims[i].bounds, prims[i].bounds.centre(), prims[i].type, prims[i].index};
+        for (size_t i = 0; i < prims.size(); ++i) refs_[i] = {prims[i].bounds, prims[i].bounds.centre(), prims[i].kind, prims[i].index};
         // Depth beyond which splits fall back to the object median, which halves the count every
         // level: the binary tree stays shallower than forced_median_depth + log2(n) < 96, so the
         // traversal stack below can never overflow.
@@ -168,7 +170,7 @@ class bvh_builder {
     struct ref {
         box3f bounds;
         vec3f centre;
-        primitive_type type;
+        shape_kind kind;
         uint32_t index;
     };
     struct binary_node {
@@ -204,7 +206,7 @@ class bvh_builder {
         for (uint32_t i = first; i < first + count; ++i) {
             bounds.grow(refs_[i].bounds);
             centres.grow(refs_[i].centre);
-            mixed |= refs_[i].type != refs_[first].type;
+            mixed |= refs_[i].kind != refs_[first].kind;
         }
 
         const float leaf_cost = options_.primitive_cost * float(count);
@@ -259,9 +261,10 @@ class bvh_builder {
 
         if (count <= options_.max_leaf_size && leaf_cost <= split_cost) {
             if (!mixed) return make_leaf(bounds, first, count);
-            // A leaf holds one type: split the range by type instead.
+            // A leaf holds one kind: split the range by kind instead.
+            const shape_kind first_kind = refs_[first].kind;
             auto middle = std::partition(refs_.begin() + first, refs_.begin() + first + count,
-                                         [&](const ref& r) { return r.type == refs_[first].type; });
+                                         [&](const ref& r) { return r.kind == first_kind; });
             return split_at(first, count, uint32_t(middle - refs_.begin()), bounds, depth);
         }
 
@@ -310,13 +313,13 @@ class bvh_builder {
         out.stats.depth = std::max(out.stats.depth, depth);
         if (node.leaf) {
             ++out.stats.leaves;
-            primitive_type type = refs_[node.first].type;
-            auto& order = out.order[size_t(type)];
+            shape_kind kind = refs_[node.first].kind;
+            auto& order = out.order[size_t(kind)];
             if (order.size() + node.count > size_t(bvh_ref::max_first) + 1)
-                throw scene_error("too many primitives of one kind for the BVH (at most 2^26)");
+                throw scene_error("too many shapes of one kind for the BVH (at most 2^25 = 33554432)");
             auto first = uint32_t(order.size());
             for (uint32_t i = node.first; i < node.first + node.count; ++i) order.push_back(refs_[i].index);
-            return bvh_ref::make_leaf(type, first, node.count);
+            return bvh_ref::make_leaf(kind, first, node.count);
         }
         // Gather up to eight children: open the largest inner child until there are eight.
         uint32_t children[8] = {node.left, node.right};
@@ -336,6 +339,7 @@ class bvh_builder {
             children[widest] = binary_[opened].left;
             children[n++] = binary_[opened].right;
         }
+        if (out.nodes.size() >= bvh_ref::max_nodes) throw scene_error("too many BVH nodes (at most 2^29)");
         auto index = uint32_t(out.nodes.size());
         out.nodes.emplace_back();
         bvh_node8 filled;

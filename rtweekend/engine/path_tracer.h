@@ -11,6 +11,7 @@
 #include "../hittable.h"
 #include "camera_frame.h"
 #include "compiled_scene.h"
+#include "scene_compiler.h"
 #include "environment.h"
 #include "ray_offset.h"
 #include "render_settings.h"
@@ -45,7 +46,7 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
         material_desc custom_desc;
         const material_desc* m;
         if (hit.custom_object) {
-            custom_desc = scene.describe_material(hit.custom_record.mat.get());
+            custom_desc = compile_reported_material(hit.custom_record);
             m = &custom_desc;
         } else {
             m = &scene.materials[hit.material];

@@ -18,6 +18,8 @@
 #include "render_settings.h"
 #include "scheduler.h"
 #include "compiled_scene.h"
+#include "scene_compiler.h"
+#include "validate.h"
 #include "../whitted_scene.h"
 
 #include <chrono>
@@ -166,16 +168,16 @@ inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whit
     if (!std::isfinite(scene.shadow_ray_epsilon) || scene.shadow_ray_epsilon < 0)
         throw scene_error("shadow ray epsilon must be finite and non-negative");
     if (scene.max_recursion_depth < 0) throw scene_error("max recursion depth must be non-negative");
-    detail::check_color(scene.background, "background colour");
-    detail::check_color(scene.ambient_light, "ambient light");
+    check_color(scene.background, "background colour");
+    check_color(scene.ambient_light, "ambient light");
     background_ = vec3f(scene.background);
     ambient_light_ = vec3f(scene.ambient_light);
     shadow_ray_epsilon_ = float(scene.shadow_ray_epsilon);
     max_recursion_depth_ = scene.max_recursion_depth;
     for (const material_desc& d : compiled_.materials) materials_.push_back(detail::make_whitted_shading(d));
     for (const point_light& l : scene.lights) {
-        if (!detail::finite3(l.position)) throw scene_error("point light position must be finite");
-        detail::check_color(l.intensity, "point light intensity");
+        if (!finite3(l.position)) throw scene_error("point light position must be finite");
+        check_color(l.intensity, "point light intensity");
         lights_.push_back({vec3f(l.position - compiled_.origin), vec3f(l.intensity)});
     }
     if (options_.cull_back_faces)
@@ -240,7 +242,7 @@ inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, co
 inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, uint64_t& rays) const {
     // A user-written hittable reports its own material; built-in shapes index the table.
     shading_material custom;
-    if (hit.custom_object) custom = detail::make_whitted_shading(compiled_.describe_material(hit.custom_record.mat.get()));
+    if (hit.custom_object) custom = detail::make_whitted_shading(compile_reported_material(hit.custom_record));
     const shading_material& m = hit.custom_object ? custom : materials_[hit.material];
     vec3f L = shade(hit, r, m, rays);
     if (depth >= max_recursion_depth_ || m.kind == whitted_material::kind_t::plain) return L;
@@ -287,7 +289,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     if (c.width <= 0 || c.height <= 0)
         throw scene_error("image resolution must be positive, got " + std::to_string(c.width) + "x" +
                           std::to_string(c.height));
-    if (!detail::finite3(c.position) || !detail::finite3(c.gaze) || !detail::finite3(c.up) ||
+    if (!finite3(c.position) || !finite3(c.gaze) || !finite3(c.up) ||
         !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
         throw scene_error("camera settings must be finite numbers");
 
@@ -296,7 +298,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     const vec3 w = -unit_vector(c.gaze);
     const vec3 u = unit_vector(cross(c.up, w));
     const vec3 v = cross(w, u);
-    if (!detail::finite3(u) || !detail::finite3(w)) throw scene_error("camera gaze and up must be non-zero and not parallel");
+    if (!finite3(u) || !finite3(w)) throw scene_error("camera gaze and up must be non-zero and not parallel");
     // Pixel (i, j), j = 0 the top row: s = e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v.
     const vec3 corner = -c.near_distance * w + c.left * u + c.top * v; // relative to e
     const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;

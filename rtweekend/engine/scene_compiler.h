@@ -1,0 +1,243 @@
+#pragma once
+// compile_scene: turns the world as users build it (hittable_list, sphere, triangle,
+// triangle_mesh, materials) into the compiled scene the renderer traces (compiled_scene.h).
+//
+//   compiled_scene scene = compile_scene(world, camera_position);
+//
+// It walks the world once, before rendering. Built-in spheres and triangles (single ones and
+// whole meshes) go into their shape sets, in the order of the leaves of a BVH built over all of
+// them, so a leaf's shapes are tested several per SIMD instruction; built-in materials go into
+// the material table (material_compiler.h); anything else (a user's own hittable or material
+// subclass) is kept by pointer and called through its virtual functions. Positions are stored
+// relative to `origin` (the camera), computed in double before rounding to float, so a scene far
+// from the world origin renders as precisely as one near it; shared mesh vertices round
+// identically, so meshes stay watertight.
+//
+// Invalid input (NaN or infinite coordinates, non-positive radii, invalid material parameters,
+// a shape without a material, mesh indices out of range) throws scene_error. Triangles of zero
+// area can never be hit: a mesh's are left out and counted, a single one is an error.
+
+#include "../hittable.h"
+#include "../hittable_list.h"
+#include "../material.h"
+#include "../mesh.h"
+#include "../scene_error.h"
+#include "../sphere.h"
+#include "../triangle.h"
+#include "bvh.h"
+#include "compiled_scene.h"
+#include "material_compiler.h"
+#include "validate.h"
+#include "vec3f.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <typeinfo>
+#include <unordered_map>
+#include <vector>
+
+namespace rt {
+
+compiled_scene compile_scene(const hittable& world, const point3& origin);
+
+// The table entry for the material a user's hittable reported at a hit (compiled on the spot).
+material_desc compile_reported_material(const hit_record& rec);
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+class scene_compiler {
+  public:
+    explicit scene_compiler(compiled_scene& out) : out_(out) {}
+
+    void add(const hittable& object) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(hittable_list)) {
+            for (const auto& child : static_cast<const hittable_list&>(object).objects) {
+                if (!child) throw scene_error("hittable_list holds a null object");
+                add(*child);
+            }
+        } else if (type == typeid(sphere)) {
+            add_sphere(static_cast<const sphere&>(object));
+        } else if (type == typeid(triangle)) {
+            const auto& t = static_cast<const triangle&>(object);
+            if (!t.mat()) throw scene_error("triangle at " + point_text(t.a()) + " has no material");
+            uint32_t m = material_index(t.mat().get());
+            if (!add_triangle(t.a(), t.b(), t.c(), m))
+                throw scene_error("triangle " + point_text(t.a()) + " " + point_text(t.b()) + " " + point_text(t.c()) +
+                                  " has zero area");
+        } else if (type == typeid(triangle_mesh)) {
+            add_mesh(static_cast<const triangle_mesh&>(object));
+        } else {
+            out_.custom_objects.push_back(&object);
+        }
+    }
+
+    // Builds the BVH and lays the primitives out in its leaf order.
+    void finish() {
+        std::vector<bvh_primitive> prims;
+        prims.reserve(spheres_.size() + triangles_.size());
+        for (size_t i = 0; i < spheres_.size(); ++i) {
+            const sphere_input& s = spheres_[i];
+            box3f b;
+            // Rounded outwards: the box must contain the float sphere the leaf test sees.
+            b.lo = {down(s.c.x() - s.r), down(s.c.y() - s.r), down(s.c.z() - s.r)};
+            b.hi = {up(s.c.x() + s.r), up(s.c.y() + s.r), up(s.c.z() + s.r)};
+            prims.push_back({b, shape_kind::sphere, uint32_t(i)});
+        }
+        for (size_t i = 0; i < triangles_.size(); ++i) {
+            box3f b;
+            for (const vec3f& v : triangles_[i].v) b.grow(v);
+            prims.push_back({b, shape_kind::triangle, uint32_t(i)});
+        }
+        out_.bvh = build_bvh8(prims);
+
+        // Leaf loads read floatv::width lanes from any leaf start: pad every array that far.
+        const size_t pad = floatv::width;
+        const auto& sphere_order = out_.bvh.order[size_t(shape_kind::sphere)];
+        out_.spheres.count = sphere_order.size();
+        for (uint32_t i : sphere_order) push_sphere(spheres_[i]);
+        for (size_t k = 0; k < pad; ++k) out_.spheres.append(vec3f(0, 0, 0), 0, 0, /*padding=*/true);
+
+        const auto& triangle_order = out_.bvh.order[size_t(shape_kind::triangle)];
+        out_.triangles.count = triangle_order.size();
+        for (uint32_t i : triangle_order) push_triangle(triangles_[i]);
+        if (out_.triangles.count > 0)
+            for (size_t k = 0; k < pad; ++k) push_triangle({{vec3f(), vec3f(), vec3f()}, 0});
+    }
+
+  private:
+    struct sphere_input {
+        vec3 c; // relative to the scene origin, in double
+        double r;
+        uint32_t material;
+    };
+    struct triangle_input {
+        std::array<vec3f, 3> v;
+        uint32_t material;
+        std::array<vec3f, 3> n{}; // shading normals at the vertices (smooth meshes), else zero
+        bool smooth = false;
+    };
+
+    static float down(double x) { return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity()); }
+    static float up(double x) { return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity()); }
+
+    uint32_t material_index(const material* m) {
+        auto found = index_.find(m);
+        if (found != index_.end()) return found->second;
+        material_desc d = compile_material(*m);
+        if (d.kind == material_kind::custom) out_.has_custom_materials = true;
+        auto index = static_cast<uint32_t>(out_.materials.size());
+        out_.materials.push_back(d);
+        index_.emplace(m, index);
+        return index;
+    }
+
+    void add_sphere(const sphere& s) {
+        if (!finite3(s.center())) throw scene_error("sphere centre must be finite, got " + point_text(s.center()));
+        if (!(std::isfinite(s.radius()) && s.radius() > 0))
+            throw scene_error("sphere radius must be positive and finite, got " + std::to_string(s.radius()));
+        if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
+        vec3 c = s.center() - out_.origin;
+        if (!(std::fmax(std::fabs(c.x()), std::fmax(std::fabs(c.y()), std::fabs(c.z()))) + s.radius() < max_float_extent))
+            throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
+                              " is out of single-precision range: its distance from the camera plus its radius must "
+                              "be below 1e18");
+        spheres_.push_back({c, s.radius(), material_index(s.mat().get())});
+    }
+
+    // False when the triangle has zero area in float (it could never be hit).
+    bool add_triangle(const point3& a, const point3& b, const point3& c, uint32_t material) {
+        for (const point3* p : {&a, &b, &c}) {
+            if (!finite3(*p)) throw scene_error("triangle vertex must be finite, got " + point_text(*p));
+            vec3 q = *p - out_.origin;
+            if (!(std::fmax(std::fabs(q.x()), std::fmax(std::fabs(q.y()), std::fabs(q.z()))) < max_float_extent))
+                throw scene_error("triangle vertex " + point_text(*p) +
+                                  " is out of single-precision range: it must be within 1e18 of the camera");
+        }
+        // Relative to the origin in double, then rounded once: a vertex shared by two triangles
+        // gets the same float coordinates in both.
+        triangle_input t{{vec3f(a - out_.origin), vec3f(b - out_.origin), vec3f(c - out_.origin)}, material};
+        vec3 e1 = t.v[1].to_double() - t.v[0].to_double(), e2 = t.v[2].to_double() - t.v[0].to_double();
+        if (cross(e1, e2).length_squared() == 0) return false;
+        triangles_.push_back(t);
+        return true;
+    }
+
+    void add_mesh(const triangle_mesh& mesh) {
+        if (!mesh.mat) throw scene_error("triangle mesh has no material");
+        uint32_t m = material_index(mesh.mat.get());
+        for (size_t i = 0; i < mesh.faces.size(); ++i) {
+            const auto& f = mesh.faces[i];
+            for (uint32_t v : f)
+                if (v >= mesh.positions.size())
+                    throw scene_error("triangle mesh face " + std::to_string(i) + " uses vertex " + std::to_string(v) +
+                                      " of " + std::to_string(mesh.positions.size()));
+            if (!add_triangle(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]], m)) {
+                ++out_.triangles.degenerate;
+                continue;
+            }
+            if (mesh.smooth_shading && i < mesh.face_normals.size()) set_vertex_normals(mesh, i);
+        }
+    }
+
+    // A smooth mesh's triangle takes its corners' normals; a corner without a usable normal gets
+    // the face normal.
+    void set_vertex_normals(const triangle_mesh& mesh, size_t face) {
+        triangle_input& t = triangles_.back();
+        vec3f face_normal = vec3f(unit_vector(cross(t.v[1].to_double() - t.v[0].to_double(),
+                                                    t.v[2].to_double() - t.v[0].to_double())));
+        for (size_t k = 0; k < 3; ++k) {
+            uint32_t index = mesh.face_normals[face][k];
+            vec3 n = index < mesh.normals.size() ? mesh.normals[index] : vec3(0, 0, 0);
+            double len = n.length();
+            t.n[k] = finite3(n) && len > 0 ? vec3f(n / len) : face_normal;
+        }
+        t.smooth = true;
+        any_smooth_ = true;
+    }
+
+    void push_sphere(const sphere_input& s) { out_.spheres.append(vec3f(s.c), static_cast<float>(s.r), s.material); }
+
+    void push_triangle(const triangle_input& t) {
+        out_.triangles.append(t.v, t.material);
+        if (!any_smooth_) return;
+        std::array<vec3f, 3> n = t.n;
+        if (!t.smooth) {
+            vec3 e1 = t.v[1].to_double() - t.v[0].to_double(), e2 = t.v[2].to_double() - t.v[0].to_double();
+            vec3 c = cross(e1, e2);
+            vec3f face = c.length_squared() > 0 ? vec3f(unit_vector(c)) : vec3f(0, 0, 1); // padding: never hit
+            n = {face, face, face};
+        }
+        out_.triangles.append_normals(n);
+    }
+
+    compiled_scene& out_;
+    std::unordered_map<const material*, uint32_t> index_;
+    std::vector<sphere_input> spheres_;
+    std::vector<triangle_input> triangles_;
+    bool any_smooth_ = false;
+};
+
+} // namespace detail
+
+inline compiled_scene compile_scene(const hittable& world, const point3& origin) {
+    if (!finite3(origin)) throw scene_error("camera position must be finite, got " + point_text(origin));
+    compiled_scene scene;
+    scene.origin = origin;
+    detail::scene_compiler compiler(scene);
+    compiler.add(world);
+    compiler.finish();
+    return scene;
+}
+
+inline material_desc compile_reported_material(const hit_record& rec) {
+    if (!rec.mat) throw scene_error("a user-written hittable reported a hit without a material");
+    return compile_material(*rec.mat);
+}
+
+} // namespace rt

@@ -1,0 +1,26 @@
+#pragma once
+// surface_hit: what the compiled scene's closest-hit query reports about the surface a ray meets.
+
+#include "../hittable.h"
+#include "vec3f.h"
+
+#include <cstdint>
+#include <limits>
+
+namespace rt {
+
+struct surface_hit {
+    float t = std::numeric_limits<float>::infinity();
+    vec3f p;               // hit point, relative to the scene origin
+    vec3f normal;          // unit geometric normal, facing the incoming ray
+    vec3f shading_normal;  // unit normal to shade with, on the same side: the geometric normal,
+                           // or a smooth mesh's interpolated vertex normals
+    bool front_face = true;
+    float offset = 0;      // extra push off the surface for spawned rays (the shape's own error)
+    uint32_t material = 0; // index into compiled_scene::materials
+    // Set when a user-written hittable was hit: its record, in world coordinates.
+    const hittable* custom_object = nullptr;
+    hit_record custom_record;
+};
+
+} // namespace rt
