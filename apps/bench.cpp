@@ -13,6 +13,10 @@
 //   bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]
 //       time per ray for 1k, 10k, 100k and 1M random spheres, and for the mesh (default: the
 //       small bunny) and its Loop subdivisions up to N levels; one table
+//   bench --user-shapes N [--threads N] [--runs N]
+//       renders N spheres written as user hittables (a book-style class, not the built-in
+//       sphere) on a grid, once with bounding_box() (they go into the BVH) and once without (each
+//       ray tests every one), interleaved; prints the medians and their ratio
 //   bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]
 //         [--plot F.svg] [--book-seconds S --book-rmse8 E]
 //       renders at 1, 2, 4, ... N samples per pixel (and, with --adaptive, with adaptive
@@ -61,6 +65,7 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                  "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                  "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
+                 "       bench --user-shapes N [--threads N] [--runs N]\n"
                  "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]\n"
                  "             [--plot F.svg] [--book-seconds S --book-rmse8 E]\n");
     std::exit(2);
@@ -73,6 +78,7 @@ struct bench_options {
     std::optional<double> book_seconds, book_rmse8;
     std::vector<std::string> rays;
     bool scaling = false;
+    int user_shapes = 0;
     int runs = 5, threads = 1, size = 1024, levels = 4;
     std::optional<int> width, spp, depth;
     bool threads_given = false, runs_given = false;
@@ -94,6 +100,7 @@ bench_options parse(int argc, char** argv) {
                         "       bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--threads N] [--runs N]\n"
                         "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                         "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
+                        "       bench --user-shapes N [--threads N] [--runs N]\n"
                         "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N]\n"
                         "             [--csv F] [--plot F.svg] [--book-seconds S --book-rmse8 E]\n"
                         "Medians of --runs runs (default 5; 1 for --error); one thread unless --threads (0 = all cores;\n"
@@ -104,6 +111,7 @@ bench_options parse(int argc, char** argv) {
         else if (arg == "--rays") o.rays.push_back(next());
         else if (arg == "--make-rays") o.make_rays = next();
         else if (arg == "--scaling") o.scaling = true;
+        else if (arg == "--user-shapes") o.user_shapes = integer(1, 1 << 22);
         else if (arg == "--error") o.error_ref = next();
         else if (arg == "--csv") o.csv = next();
         else if (arg == "--plot") o.plot = next();
@@ -126,8 +134,9 @@ bench_options parse(int argc, char** argv) {
         else usage("unknown option '" + arg + "'");
     }
     int modes = (!o.scene.empty() && o.error_ref.empty()) + (!o.rays.empty() || !o.make_rays.empty()) + o.scaling +
-                !o.error_ref.empty();
-    if (modes != 1) usage("give exactly one of --scene, --mesh with --rays or --make-rays, --scaling, or --error");
+                !o.error_ref.empty() + (o.user_shapes > 0);
+    if (modes != 1)
+        usage("give exactly one of --scene, --mesh with --rays or --make-rays, --scaling, --user-shapes, or --error");
     if (!o.error_ref.empty() && o.scene.empty()) usage("--error needs --scene");
     if (o.book_seconds.has_value() != o.book_rmse8.has_value()) usage("--book-seconds and --book-rmse8 go together");
     if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
@@ -574,6 +583,85 @@ void bench_error(const bench_options& o) {
     }
 }
 
+// --- user shapes --------------------------------------------------------------------------------
+
+// A sphere written as a user would write it from the book (its own hit() in double precision),
+// with or without book 2's bounding_box().
+class user_sphere : public rt::hittable {
+  public:
+    user_sphere(rt::point3 c, double r, std::shared_ptr<rt::material> m, bool boxed)
+        : c_(c), r_(r), m_(std::move(m)), boxed_(boxed) {}
+    bool hit(const rt::ray& r, rt::interval t, rt::hit_record& rec) const override {
+        rt::vec3 oc = c_ - r.origin();
+        double a = r.direction().length_squared(), h = dot(r.direction(), oc);
+        double disc = h * h - a * (oc.length_squared() - r_ * r_);
+        if (disc < 0) return false;
+        double sq = std::sqrt(disc), root = (h - sq) / a;
+        if (!t.surrounds(root)) {
+            root = (h + sq) / a;
+            if (!t.surrounds(root)) return false;
+        }
+        rec.t = root;
+        rec.p = r.at(root);
+        rec.set_face_normal(r, (rec.p - c_) / r_);
+        rec.mat = m_;
+        return true;
+    }
+    rt::aabb bounding_box() const override {
+        if (!boxed_) return hittable::bounding_box(); // a book-1 class: no box of its own
+        return rt::aabb(c_ - rt::vec3(r_, r_, r_), c_ + rt::vec3(r_, r_, r_));
+    }
+
+  private:
+    rt::point3 c_;
+    double r_;
+    std::shared_ptr<rt::material> m_;
+    bool boxed_;
+};
+
+void bench_user_shapes(const bench_options& o) {
+    // N spheres of radius 0.2 on a square grid of pitch 0.5 on a ground sphere, two materials, a
+    // 160x90 view from above at 4 samples per pixel, depth 8.
+    auto world_of = [&](bool boxed) {
+        rt::hittable_list world;
+        world.add(std::make_shared<rt::sphere>(rt::point3(0, -1000, 0), 1000,
+                                               std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
+        std::shared_ptr<rt::material> red = std::make_shared<rt::lambertian>(rt::color(0.7, 0.3, 0.3));
+        std::shared_ptr<rt::material> steel = std::make_shared<rt::metal>(rt::color(0.8, 0.8, 0.8), 0.2);
+        int side = int(std::ceil(std::sqrt(double(o.user_shapes))));
+        for (int i = 0; i < o.user_shapes; ++i) {
+            double x = (i % side) - side / 2.0, z = (i / side) - side / 2.0;
+            world.add(std::make_shared<user_sphere>(rt::point3(x * 0.5, 0.2, z * 0.5), 0.2, i % 3 ? red : steel, boxed));
+        }
+        return world;
+    };
+    const rt::hittable_list boxed = world_of(true), unboxed = world_of(false);
+    rt::camera cam;
+    cam.aspect_ratio = 16.0 / 9.0;
+    cam.image_width = 160;
+    cam.samples_per_pixel = 4;
+    cam.max_depth = 8;
+    cam.lookfrom = rt::point3(0, 12, 30);
+    cam.lookat = rt::point3(0, 0, 0);
+    cam.vfov = 40;
+    cam.threads = o.threads;
+    cam.quiet = true;
+    std::vector<double> with_box, without_box;
+    uint64_t rays = 0;
+    for (int run = 0; run < o.runs; ++run) {
+        rt::render_result a = rt::render(cam, boxed), b = rt::render(cam, unboxed);
+        with_box.push_back(a.stats.mrays_per_second());
+        without_box.push_back(b.stats.mrays_per_second());
+        rays = a.stats.rays;
+        std::fprintf(stderr, "bench: run %d/%d: with boxes %.3f Mrays/s, without %.3f Mrays/s\n", run + 1, o.runs,
+                     with_box.back(), without_box.back());
+    }
+    std::printf("%d user shapes, 160x90, 4 spp, depth 8, %d thread%s, %llu rays: with bounding boxes (in the BVH) "
+                "mrays_per_s %.3f; without (tested by every ray) mrays_per_s %.4f; ratio %.1f (medians of %d)\n",
+                o.user_shapes, o.threads, o.threads == 1 ? "" : "s", static_cast<unsigned long long>(rays),
+                median(with_box), median(without_box), median(with_box) / median(without_box), o.runs);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -583,6 +671,7 @@ int main(int argc, char** argv) {
         else if (!o.scene.empty()) bench_scene(o);
         else if (!o.make_rays.empty()) bench_make_rays(o);
         else if (!o.rays.empty()) bench_rays(o);
+        else if (o.user_shapes > 0) bench_user_shapes(o);
         else bench_scaling(o);
     });
 }

@@ -1,10 +1,13 @@
 #pragma once
-// hittable: anything a ray can hit, and hit_record, what a hit reports (the book's interface).
+// hittable: anything a ray can hit, and hit_record, what a hit reports (the books' interface).
 //
-// The built-in shapes are recognised by the renderer and copied into flat arrays (scene.h), so
-// their virtual hit() below serves the teaching surface and user code only. A user's own
-// subclass is still rendered, through the slower virtual path.
+// The built-in shapes are recognised by the renderer and copied into flat arrays
+// (engine/scene_compiler.h), so their virtual hit() below serves the teaching surface and user
+// code only. A user's own subclass is rendered through its virtual hit(): inside the renderer's
+// BVH when it reports a bounding box (book 2's bounding_box()), tested against every ray when it
+// does not (a book-1 class, which has none).
 
+#include "aabb.h"
 #include "interval.h"
 #include "ray.h"
 
@@ -35,6 +38,10 @@ class hittable {
     virtual ~hittable() = default;
 
     virtual bool hit(const ray& r, interval ray_t, hit_record& rec) const = 0;
+
+    // A box that holds everything hit() can hit (book 2). The default, for shapes written before
+    // book 2 introduces it, is the whole of space: such a shape is tested against every ray.
+    virtual aabb bounding_box() const { return aabb::universe; }
 };
 
 } // namespace rt

@@ -1,5 +1,5 @@
 #pragma once
-// hittable_list: a list of hittables that is itself a hittable (the book's world container).
+// hittable_list: a list of hittables that is itself a hittable (the books' world container).
 
 #include "hittable.h"
 
@@ -33,6 +33,15 @@ class hittable_list : public hittable {
         }
 
         return hit_anything;
+    }
+
+    // The box around every object's box. Computed when asked rather than kept up to date in
+    // add(), so that it stays right when code edits `objects` directly.
+    aabb bounding_box() const override {
+        aabb box;
+        for (const auto& object : objects)
+            if (object) box = aabb(box, object->bounding_box());
+        return box;
     }
 };
 

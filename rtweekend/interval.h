@@ -1,5 +1,6 @@
 #pragma once
-// interval: a closed range of reals [min, max], as in the book.
+// interval: a closed range of reals [min, max], as in the books (book 2 adds the union of two
+// intervals and shifting by a displacement).
 
 #include "constants.h"
 
@@ -11,6 +12,9 @@ class interval {
 
     constexpr interval() : min(+infinity), max(-infinity) {} // Default interval is empty
     constexpr interval(double min, double max) : min(min), max(max) {}
+    // The smallest interval holding both a and b.
+    constexpr interval(const interval& a, const interval& b)
+        : min(a.min <= b.min ? a.min : b.min), max(a.max >= b.max ? a.max : b.max) {}
 
     constexpr double size() const { return max - min; }
     constexpr bool contains(double x) const { return min <= x && x <= max; }
@@ -23,6 +27,11 @@ class interval {
 
 inline constexpr interval interval::empty = interval(+infinity, -infinity);
 inline constexpr interval interval::universe = interval(-infinity, +infinity);
+
+constexpr interval operator+(const interval& ival, double displacement) {
+    return interval(ival.min + displacement, ival.max + displacement);
+}
+constexpr interval operator+(double displacement, const interval& ival) { return ival + displacement; }
 
 } // namespace rt
 

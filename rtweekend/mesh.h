@@ -43,6 +43,16 @@ class triangle_mesh : public hittable {
 
     size_t triangle_count() const { return faces.size(); }
 
+    // The box around the vertices its faces use (empty when there are none).
+    aabb bounding_box() const override {
+        interval span[3];
+        for (const auto& f : faces)
+            for (uint32_t v : f)
+                if (v < positions.size())
+                    for (int a = 0; a < 3; ++a) span[a] = interval(span[a], interval(positions[v][a], positions[v][a]));
+        return aabb(span[0], span[1], span[2]);
+    }
+
     bool hit(const ray& r, interval ray_t, hit_record& rec) const override {
         bool found = false;
         for (const auto& f : faces) {

@@ -64,6 +64,11 @@ class sphere : public hittable {
         return true;
     }
 
+    aabb bounding_box() const override {
+        vec3 r(radius_, radius_, radius_);
+        return aabb(center_ - r, center_ + r);
+    }
+
     const point3& center() const { return center_; }
     double radius() const { return radius_; }
     const std::shared_ptr<material>& mat() const { return mat_; }

@@ -92,6 +92,14 @@ class triangle : public hittable {
         return true;
     }
 
+    aabb bounding_box() const override {
+        auto span = [&](int axis) {
+            return interval(std::fmin(a_[axis], std::fmin(b_[axis], c_[axis])),
+                            std::fmax(a_[axis], std::fmax(b_[axis], c_[axis])));
+        };
+        return aabb(span(0), span(1), span(2)); // a flat axis is padded, as book 2 pads quads
+    }
+
     const point3& a() const { return a_; }
     const point3& b() const { return b_; }
     const point3& c() const { return c_; }

@@ -6,7 +6,10 @@
 #include <rtweekend/mesh.h>
 #include <rtweekend/camera.h>
 #include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/engine/rng.h>
+#include <rtweekend/engine/sampling.h>
 #include <rtweekend/sphere.h>
+#include <rtweekend/triangle.h>
 
 #include <doctest/doctest.h>
 
@@ -104,8 +107,8 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     CHECK(s.spheres.x.size() == 5 + floatv::width);
     CHECK(s.spheres.r2.size() == 5 + floatv::width);
     for (size_t i = 5; i < s.spheres.r2.size(); ++i) CHECK(s.spheres.r2[i] < 0);
-    CHECK(s.custom_objects.empty());
-    CHECK_FALSE(s.has_custom_materials);
+    CHECK(s.unbounded_user_shapes.empty());
+    CHECK_FALSE(s.has_user_materials);
 
     // One table entry per distinct material, shared by pointer.
     REQUIRE(s.materials.size() == 3);
@@ -146,9 +149,9 @@ TEST_CASE("compile_scene: user shapes and materials are kept for the virtual pat
     world.add(user_shape);
     world.add(std::make_shared<sphere>(point3(0, 0, -5), 1, std::make_shared<odd_material>()));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
-    REQUIRE(s.custom_objects.size() == 1);
-    CHECK(s.custom_objects[0] == user_shape.get());
-    CHECK(s.has_custom_materials);
+    REQUIRE(s.unbounded_user_shapes.size() == 1);
+    CHECK(s.unbounded_user_shapes[0] == user_shape.get());
+    CHECK(s.has_user_materials);
     REQUIRE(s.materials.size() == 1);
     CHECK(s.materials[0].kind == material_kind::custom);
     CHECK(s.materials[0].custom != nullptr);
@@ -296,4 +299,51 @@ TEST_CASE("compile_scene: smooth meshes interpolate their vertex normals barycen
     REQUIRE(scene.intersect(axis_ray(-3, 1), hit));
     CHECK(hit.normal.z == doctest::Approx(-1));
     CHECK(hit.shading_normal.z == doctest::Approx(-nz / len).epsilon(1e-5));
+}
+
+TEST_CASE("compile_scene: a scene of one shape kind is walked by that kind's kernel alone, with the same hits") {
+    // 300 random spheres; the same with a triangle far away added (a mixed scene, whose walk asks
+    // every leaf its kind). Both walks must find the same sphere at the same distance, bit for bit.
+    pcg32 rng(99);
+    hittable_list spheres_only, mixed;
+    auto m = grey();
+    for (int i = 0; i < 300; ++i) {
+        auto s = std::make_shared<sphere>(point3(20 * rng.next_double() - 10, 20 * rng.next_double() - 10,
+                                                 20 * rng.next_double() - 10),
+                                          0.1 + 0.5 * rng.next_double(), m);
+        spheres_only.add(s);
+        mixed.add(s);
+    }
+    mixed.add(std::make_shared<triangle>(point3(500, 500, 500), point3(501, 500, 500), point3(500, 501, 500), m));
+    const compiled_scene a = compile_scene(spheres_only, point3(0, 0, 0));
+    const compiled_scene b = compile_scene(mixed, point3(0, 0, 0));
+    REQUIRE(a.single_kind.has_value());
+    CHECK(*a.single_kind == shape_kind::sphere);
+    CHECK_FALSE(b.single_kind.has_value());
+    REQUIRE(a.bvh.stats.nodes > 0);
+
+    hittable_list triangles_only;
+    triangles_only.add(std::make_shared<triangle>(point3(0, 0, -1), point3(1, 0, -1), point3(0, 1, -1), m));
+    const compiled_scene t = compile_scene(triangles_only, point3(0, 0, 0));
+    REQUIRE(t.single_kind.has_value());
+    CHECK(*t.single_kind == shape_kind::triangle);
+    CHECK_FALSE(compile_scene(hittable_list(), point3(0, 0, 0)).single_kind.has_value());
+
+    long hits = 0;
+    for (int k = 0; k < 5000; ++k) {
+        ray3f r;
+        r.origin = {float(30 * rng.next_double() - 15), float(30 * rng.next_double() - 15), float(30 * rng.next_double() - 15)};
+        r.dir = sample_unit_sphere(rng.next_float(), rng.next_float());
+        surface_hit ha, hb;
+        bool fa = a.intersect(r, ha), fb = b.intersect(r, hb);
+        REQUIRE(fa == fb);
+        CHECK(a.occluded(r) == fa);
+        CHECK(b.occluded(r) == fb);
+        if (!fa) continue;
+        ++hits;
+        CHECK(ha.t == hb.t);
+        CHECK(ha.p.x == hb.p.x);
+        CHECK(ha.normal.z == hb.normal.z);
+    }
+    CHECK(hits > 200); // about 7 % of random rays meet a sphere here
 }

@@ -276,7 +276,7 @@ TEST_CASE("compiled_scene::intersect from outside") {
     CHECK(hit.normal.z == doctest::Approx(1).epsilon(1e-6));
     CHECK(hit.front_face);
     CHECK(hit.material == 0);
-    CHECK(hit.custom_object == nullptr);
+    CHECK(hit.user_shape == nullptr);
     CHECK(s.materials.at(hit.material).kind == material_kind::lambertian);
 }
 

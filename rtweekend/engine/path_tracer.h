@@ -45,8 +45,8 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
         // A user-written hittable reports its own material; a built-in sphere indexes the table.
         material_desc custom_desc;
         const material_desc* m;
-        if (hit.custom_object) {
-            custom_desc = compile_reported_material(hit.custom_record);
+        if (hit.user_shape) {
+            custom_desc = compile_reported_material(hit.user_record);
             m = &custom_desc;
         } else {
             m = &scene.materials[hit.material];
@@ -81,7 +81,7 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     settings.check();
     const compiled_scene scene = compile_scene(world, frame.position);
     const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
-    const bool user_code = !scene.custom_objects.empty() || scene.has_custom_materials;
+    const bool user_code = scene.calls_user_code();
     return render_samples(
         frame.width, frame.height, settings,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {

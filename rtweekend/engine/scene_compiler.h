@@ -73,7 +73,7 @@ class scene_compiler {
         } else if (type == typeid(triangle_mesh)) {
             add_mesh(static_cast<const triangle_mesh&>(object));
         } else {
-            out_.custom_objects.push_back(&object);
+            add_user_shape(object);
         }
     }
 
@@ -94,7 +94,11 @@ class scene_compiler {
             for (const vec3f& v : triangles_[i].v) b.grow(v);
             prims.push_back({b, shape_kind::triangle, uint32_t(i)});
         }
+        for (size_t i = 0; i < user_shapes_.size(); ++i) prims.push_back({user_shapes_[i].bounds, shape_kind::user, uint32_t(i)});
         out_.bvh = build_bvh8(prims);
+        for (int k = 0; k < shape_kind_count; ++k)
+            if (out_.bvh.order[size_t(k)].size() == prims.size() && !prims.empty())
+                out_.single_kind = static_cast<shape_kind>(k);
 
         // Leaf loads read floatv::width lanes from any leaf start: pad every array that far.
         const size_t pad = floatv::width;
@@ -108,6 +112,8 @@ class scene_compiler {
         for (uint32_t i : triangle_order) push_triangle(triangles_[i]);
         if (out_.triangles.count > 0)
             for (size_t k = 0; k < pad; ++k) push_triangle({{vec3f(), vec3f(), vec3f()}, 0});
+
+        for (uint32_t i : out_.bvh.order[size_t(shape_kind::user)]) out_.user_shapes.shapes.push_back(user_shapes_[i].shape);
     }
 
   private:
@@ -130,7 +136,7 @@ class scene_compiler {
         auto found = index_.find(m);
         if (found != index_.end()) return found->second;
         material_desc d = compile_material(*m);
-        if (d.kind == material_kind::custom) out_.has_custom_materials = true;
+        if (d.kind == material_kind::custom) out_.has_user_materials = true;
         auto index = static_cast<uint32_t>(out_.materials.size());
         out_.materials.push_back(d);
         index_.emplace(m, index);
@@ -166,6 +172,31 @@ class scene_compiler {
         if (cross(e1, e2).length_squared() == 0) return false;
         triangles_.push_back(t);
         return true;
+    }
+
+    // A user-written hittable goes into the BVH when its bounding box is usable: non-empty, finite
+    // and within float's range of the origin. Otherwise (a book-1 class has only the default box,
+    // all of space) it is tested against every ray. (Not inlined: inlined into a caller whose
+    // world is a hittable_list, GCC 12 speculates `shape` is that list and warns about the
+    // devirtualised call it made up.)
+#if defined(__GNUC__)
+    __attribute__((noinline))
+#endif
+    void add_user_shape(const hittable& shape) {
+        const aabb box = shape.bounding_box();
+        double lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = box.axis_interval(a).min - out_.origin[a];
+            hi[a] = box.axis_interval(a).max - out_.origin[a];
+            if (!(lo[a] <= hi[a] && std::fabs(lo[a]) < max_float_extent && std::fabs(hi[a]) < max_float_extent)) {
+                out_.unbounded_user_shapes.push_back(&shape);
+                return;
+            }
+        }
+        box3f b; // rounded outwards: the float box must hold the double one
+        b.lo = {down(lo[0]), down(lo[1]), down(lo[2])};
+        b.hi = {up(hi[0]), up(hi[1]), up(hi[2])};
+        user_shapes_.push_back({&shape, b});
     }
 
     void add_mesh(const triangle_mesh& mesh) {
@@ -220,6 +251,11 @@ class scene_compiler {
     std::unordered_map<const material*, uint32_t> index_;
     std::vector<sphere_input> spheres_;
     std::vector<triangle_input> triangles_;
+    struct user_shape_input {
+        const hittable* shape;
+        box3f bounds; // relative to the origin
+    };
+    std::vector<user_shape_input> user_shapes_;
     bool any_smooth_ = false;
 };
 

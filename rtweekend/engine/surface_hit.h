@@ -19,8 +19,8 @@ struct surface_hit {
     float offset = 0;      // extra push off the surface for spawned rays (the shape's own error)
     uint32_t material = 0; // index into compiled_scene::materials
     // Set when a user-written hittable was hit: its record, in world coordinates.
-    const hittable* custom_object = nullptr;
-    hit_record custom_record;
+    const hittable* user_shape = nullptr;
+    hit_record user_record;
 };
 
 } // namespace rt

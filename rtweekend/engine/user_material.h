@@ -30,8 +30,8 @@ inline std::shared_ptr<material> borrow(const material* m) {
 inline bool scatter_user_material(const compiled_scene& scene, const material& m, const ray3f& r,
                                   const surface_hit& hit, vec3f& dir, vec3f& attenuation) {
     hit_record rec;
-    if (hit.custom_object) {
-        rec = hit.custom_record; // a user's hittable filled it in world coordinates
+    if (hit.user_shape) {
+        rec = hit.user_record; // a user's hittable filled it in world coordinates
     } else {
         rec.p = scene.origin + hit.p.to_double();
         rec.normal = hit.normal.to_double();

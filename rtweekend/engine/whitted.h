@@ -242,8 +242,8 @@ inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, co
 inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, uint64_t& rays) const {
     // A user-written hittable reports its own material; built-in shapes index the table.
     shading_material custom;
-    if (hit.custom_object) custom = detail::make_whitted_shading(compile_reported_material(hit.custom_record));
-    const shading_material& m = hit.custom_object ? custom : materials_[hit.material];
+    if (hit.user_shape) custom = detail::make_whitted_shading(compile_reported_material(hit.user_record));
+    const shading_material& m = hit.user_shape ? custom : materials_[hit.material];
     vec3f L = shade(hit, r, m, rays);
     if (depth >= max_recursion_depth_ || m.kind == whitted_material::kind_t::plain) return L;
 
