@@ -65,7 +65,7 @@ std::vector<std::string> parse(int argc, char** argv) {
 
 std::string size_text(const rt::image& img) { return std::to_string(img.width()) + "x" + std::to_string(img.height()); }
 
-std::string describe(const std::string& path, const rt::loaded_image& img) {
+std::string image_summary(const std::string& path, const rt::loaded_image& img) {
     return path + " (" + size_text(img.pixels) + " " + img.format +
            (img.display_encoded ? ", 8-bit display-encoded)" : ", linear)");
 }
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
         if (c.linear) print_machine_line("linear", *c.linear);
         print_machine_line("8bit", c.display);
 
-        std::printf("\nimage:     %s\nreference: %s\n", describe(files[0], a).c_str(), describe(files[1], ref).c_str());
+        std::printf("\nimage:     %s\nreference: %s\n", image_summary(files[0], a).c_str(), image_summary(files[1], ref).c_str());
         std::printf("  %-8s %-10s %-10s %-10s %-10s %-10s %-10s\n", "", "RMSE", "relMSE", "PSNR (dB)", "bias R", "bias G",
                     "bias B");
         if (c.linear) print_readable_line("linear", *c.linear);

@@ -4,23 +4,28 @@
 //   metal(albedo, fuzz)          mirror reflection, its direction moved by a uniform random point
 //                                in a ball of radius fuzz (<= 1)
 //   dielectric(refraction_index) glass: reflects or refracts, chosen by Schlick's approximation
-// and two beyond the book, with the exact Fresnel equations (fresnel.h):
+// and two beyond the book, with the exact Fresnel equations (engine/fresnel.h):
 //   conductor(n, k, tint)        a smooth metal of complex index n + ik: mirror reflection
 //                                weighted by tint * Fr(cos); n, k scalars or per-channel colours
 //   dielectric(refraction_index, absorption)
 //                                glass that reflects with the exact Fresnel probability and,
 //                                inside, keeps exp(-absorption * distance) per channel (Beer's law)
 //
-// The renderer recognises these and uses its own float kernels (bsdf.h), without virtual
-// calls. The virtual scatter() below is the book's code path; it runs for materials attached to
-// user-written shapes, and a user's own material subclass is rendered through it.
+// Each material's physics is written once, in the renderer's material contract (engine/bsdf.h:
+// sample, eval, pdf), which every integrator calls. The renderer recognises these classes and
+// calls the contract directly, without virtual calls. The virtual scatter() below is the book's
+// interface, for code that calls it itself (a ray_color of one's own): for the built-in materials
+// it draws from the same contract, in float (directions and weights agree with double arithmetic
+// to about 1e-6), with random_double(). A user's own material subclass overrides scatter(), and
+// the renderer calls it.
 
 #include "color.h"
+#include "engine/bsdf.h"
 #include "engine/fresnel.h"
+#include "engine/rng.h"
+#include "engine/vec3f.h"
 #include "hittable.h"
 #include "ray.h"
-
-#include <cmath>
 
 namespace rt {
 
@@ -34,29 +39,51 @@ class material {
     }
 };
 
-// Schlick's approximation of the Fresnel reflectance (C. Schlick, "An Inexpensive BRDF Model for
-// Physically-based Rendering", 1994): r0 + (1 - r0)(1 - cos)^5 with r0 = ((1 - ri)/(1 + ri))^2,
-// for the cosine of the incident angle and the ratio ri of refractive indices, as the book uses it.
-inline double schlick_reflectance(double cosine, double refraction_index) {
-    double r0 = (1 - refraction_index) / (1 + refraction_index);
-    r0 = r0 * r0;
-    double m = 1 - cosine;
-    return r0 + (1 - r0) * (m * m * m * m * m);
+namespace detail {
+
+// random_double() as the contract draws its numbers: uniform in [0, 1) in float.
+struct book_uniform {
+    float next_float() {
+        float u = static_cast<float>(random_double());
+        return u < 1.0f ? u : 0x1.fffffep-1f; // a double just below 1 rounds up to 1 in float
+    }
+};
+
+// The book's scatter() through the material contract: one draw of `m`'s sample() at the hit, in
+// world coordinates. A ray that reaches the back face of absorbing glass has travelled
+// rec.t * |direction| inside it: its weight includes Beer's law for that distance, as the path
+// tracer's does.
+inline bool scatter_through_contract(const compiled_material& m, const ray& r_in, const hit_record& rec,
+                                     color& attenuation, ray& scattered) {
+    const shading_point sp{vec3f(rec.normal), rec.front_face};
+    book_uniform u;
+    material_sample s;
+    if (!m.sample(-normalize(vec3f(r_in.direction())), sp, u, s)) return false;
+    vec3f weight = s.value;
+    if (!rec.front_face && m.absorbs_inside())
+        weight *= m.transmittance(static_cast<float>(rec.t * r_in.direction().length()));
+    attenuation = weight.to_double();
+    scattered = ray(rec.p, s.wi.to_double());
+    return true;
 }
+
+} // namespace detail
 
 class lambertian : public material {
   public:
     lambertian(const color& albedo) : albedo_(albedo) {}
 
-    bool scatter(const ray& /*r_in*/, const hit_record& rec, color& attenuation, ray& scattered) const override {
-        auto scatter_direction = rec.normal + random_unit_vector();
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
 
-        // Catch degenerate scatter direction
-        if (scatter_direction.near_zero()) scatter_direction = rec.normal;
-
-        scattered = ray(rec.p, scatter_direction);
-        attenuation = albedo_;
-        return true;
+    // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = material_kind::lambertian;
+        m.albedo = vec3f(albedo_);
+        m.source = this;
+        return m;
     }
 
     const color& albedo() const { return albedo_; }
@@ -68,17 +95,22 @@ class lambertian : public material {
 class metal : public material {
   public:
     // Fuzz above 1 is clamped to 1, as in the book; NaN is kept so the renderer can reject it.
+    // The fuzz offset is a point inside the ball (as the book's edition that rendered the team's
+    // reference images has it); later editions moved it onto the sphere's surface, which blurs
+    // reflections a little more.
     metal(const color& albedo, double fuzz) : albedo_(albedo), fuzz_(fuzz > 1 ? 1 : fuzz) {}
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
-        // The fuzz offset is a point inside the ball (random_in_unit_sphere), as in the book's
-        // edition that rendered the team's reference images; later editions moved it onto the
-        // sphere's surface, which blurs reflections a little more.
-        vec3 reflected = reflect(r_in.direction(), rec.normal);
-        reflected = unit_vector(reflected) + (fuzz_ * random_in_unit_sphere());
-        scattered = ray(rec.p, reflected);
-        attenuation = albedo_;
-        return dot(scattered.direction(), rec.normal) > 0;
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = material_kind::metal;
+        m.albedo = vec3f(albedo_);
+        m.fuzz = static_cast<float>(fuzz_);
+        m.source = this;
+        return m;
     }
 
     const color& albedo() const { return albedo_; }
@@ -101,56 +133,27 @@ class dielectric : public material {
         : refraction_index_(refraction_index), absorption_(absorption), exact_fresnel_(true) {}
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
-        if (exact_fresnel_) return scatter_exact(r_in, rec, attenuation, scattered);
-        attenuation = color(1.0, 1.0, 1.0);
-        double ri = rec.front_face ? (1.0 / refraction_index_) : refraction_index_;
-
-        vec3 unit_direction = unit_vector(r_in.direction());
-        double cos_theta = std::fmin(dot(-unit_direction, rec.normal), 1.0);
-        double sin_theta = std::sqrt(1.0 - cos_theta * cos_theta);
-
-        bool cannot_refract = ri * sin_theta > 1.0;
-        vec3 direction;
-        if (cannot_refract || schlick_reflectance(cos_theta, ri) > random_double())
-            direction = reflect(unit_direction, rec.normal);
-        else
-            direction = refract(unit_direction, rec.normal, ri);
-
-        scattered = ray(rec.p, direction);
-        return true;
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
     }
 
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = exact_fresnel_ ? material_kind::fresnel_dielectric : material_kind::dielectric;
+        m.albedo = {1, 1, 1};
+        m.refraction_index = static_cast<float>(refraction_index_);
+        m.absorption = vec3f(absorption_);
+        m.source = this;
+        return m;
+    }
+
+    // Refractive index in vacuum or air, or the ratio of the material's refractive index over
+    // the refractive index of the enclosing media.
     double refraction_index() const { return refraction_index_; }
     const color& absorption() const { return absorption_; }
     // True for the two-argument constructor: exact Fresnel and Beer's law instead of Schlick.
     bool exact_fresnel() const { return exact_fresnel_; }
 
   private:
-    bool scatter_exact(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const {
-        // A ray that reaches the back face has travelled inside from its origin: the previous
-        // scattering point, on this glass (there are no nested media here).
-        if (rec.front_face) {
-            attenuation = color(1.0, 1.0, 1.0);
-        } else {
-            double d = rec.t * r_in.direction().length();
-            attenuation = color(std::exp(-absorption_.x() * d), std::exp(-absorption_.y() * d),
-                                std::exp(-absorption_.z() * d));
-        }
-        double eta = rec.front_face ? refraction_index_ : 1.0 / refraction_index_; // n_t / n_i
-        vec3 unit_direction = unit_vector(r_in.direction());
-        double cos_theta = std::fmin(dot(-unit_direction, rec.normal), 1.0);
-        double fr = fresnel_dielectric(cos_theta, eta); // 1 under total internal reflection
-        vec3 direction;
-        if (fr >= 1 || random_double() < fr)
-            direction = reflect(unit_direction, rec.normal);
-        else
-            direction = refract(unit_direction, rec.normal, 1.0 / eta);
-        scattered = ray(rec.p, direction);
-        return true;
-    }
-
-    // Refractive index in vacuum or air, or the ratio of the material's refractive index over
-    // the refractive index of the enclosing media
     double refraction_index_;
     color absorption_{0, 0, 0};
     bool exact_fresnel_ = false;
@@ -166,17 +169,17 @@ class conductor : public material {
     conductor(const color& n, const color& k, const color& tint) : n_(n), k_(k), tint_(tint) {}
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
-        vec3 unit_direction = unit_vector(r_in.direction());
-        double cos_theta = std::fmin(dot(-unit_direction, rec.normal), 1.0);
-        attenuation = tint_ * reflectance(cos_theta);
-        scattered = ray(rec.p, reflect(unit_direction, rec.normal));
-        return true;
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
     }
 
-    // Fr per channel at incidence cosine `cos_theta`.
-    color reflectance(double cos_theta) const {
-        return color(fresnel_conductor(cos_theta, n_.x(), k_.x()), fresnel_conductor(cos_theta, n_.y(), k_.y()),
-                     fresnel_conductor(cos_theta, n_.z(), k_.z()));
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = material_kind::conductor;
+        m.albedo = vec3f(tint_);
+        m.eta = vec3f(n_);
+        m.k = vec3f(k_);
+        m.source = this;
+        return m;
     }
 
     const color& n() const { return n_; }

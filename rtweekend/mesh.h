@@ -5,7 +5,7 @@
 //   auto bunny = load_obj("bunny.obj", make_shared<lambertian>(color(0.8, 0.8, 0.8)));
 //   world.add(bunny);
 //
-// The renderer copies the triangles into its BVH with everything else (scene.h), so a mesh of a
+// The renderer copies the triangles into its BVH with everything else (engine/scene_compiler.h), so a mesh of a
 // million triangles renders about as fast as one of a thousand. The virtual hit() below tests
 // every triangle in turn: it is there for code that calls world.hit() itself, and is slow for
 // big meshes.

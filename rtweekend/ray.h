@@ -1,6 +1,6 @@
 #pragma once
 // ray: origin + t * direction, in double precision on the teaching surface (the renderer's
-// float rays live in scene.h).
+// float rays, ray3f, live in engine/vec3f.h).
 
 #include "vec3.h"
 

@@ -8,7 +8,7 @@
 // counted by one of them and never slips between them, which the classic Moller-Trumbore test
 // cannot promise.
 //
-// The renderer tests triangles in float, several at a time (scene.h), and falls back to
+// The renderer tests triangles in float, several at a time (engine/triangle_set.h), and falls back to
 // triangle_edge_functions in double when a ray passes exactly through an edge.
 
 #include "hittable.h"

@@ -1,7 +1,7 @@
 #pragma once
 // vec3: the book's three-component vector of doubles, used for points (point3), directions and
 // colours (color) on the teaching surface. Scenes are described in double precision; the renderer
-// converts them to float relative to the camera when it compiles the scene (see scene.h), so a
+// converts them to float relative to the camera when it compiles the scene (see engine/scene_compiler.h), so a
 // scene far from the origin keeps its precision.
 
 #include "constants.h"

@@ -93,7 +93,7 @@ TEST_CASE("adaptive: a constant region stops at the minimum, a noisy one takes m
     double low = mean_count(counts, w, 18, 30, h);
     double high = mean_count(counts, w, 34, 48, h);
     CHECK(constant == 16);
-    // The stopping rule's count (adaptive.h): 1.96 sigma sqrt(16) / (0.01 sqrt(0.5^2 + 0.3^2)),
+    // The stopping rule's count (measure/adaptive.h): 1.96 sigma sqrt(16) / (0.01 sqrt(0.5^2 + 0.3^2)),
     // about 67 and 269; rounds at most double a count and add at least a quarter, so a pixel
     // ends up to 25 % above its count.
     CHECK(low >= 67);

@@ -75,7 +75,7 @@ void check_rejected_material(std::shared_ptr<material> mat, const std::string& f
     CHECK(threw);
 }
 
-material_desc compiled_desc(std::shared_ptr<material> mat) {
+compiled_material compiled_desc(std::shared_ptr<material> mat) {
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, 0), 1, std::move(mat)));
     compiled_scene s = compile_scene(world, point3(0, 0, 5));
@@ -253,12 +253,13 @@ TEST_CASE("conductor: the book-interface scatter() mirrors and weights by tint *
         color att;
         ray out;
         REQUIRE(gold.scatter(ray(rec.p - 2 * d, 2 * d), rec, att, out));
+        // scatter() draws from the renderer's material contract, in float: to float precision.
         vec3 mirror = d - 2 * dot(d, N) * N;
-        CHECK((unit_vector(out.direction()) - mirror).length() < 1e-12);
+        CHECK((unit_vector(out.direction()) - mirror).length() < 2e-7);
         for (int c = 0; c < 3; ++c)
             CHECK(att[c] == doctest::Approx(tint[c] * reference_reflectance(std::cos(angle * pi_d / 180),
                                                                           std::complex<double>(n[c], k[c])))
-                                .epsilon(1e-10));
+                                .epsilon(2e-6));
     }
     // The scalar constructor is the grey case.
     conductor grey(0.5, 2.0, color(1, 1, 1));
@@ -282,7 +283,7 @@ TEST_CASE("fresnel: the book-interface absorbing dielectric applies Beer's law o
     color att;
     ray out;
     REQUIRE(glass.scatter(ray(rec.p - 0.75 * d, d), rec, att, out));
-    for (int c = 0; c < 3; ++c) CHECK(att[c] == doctest::Approx(std::exp(-sigma[c] * 1.5)).epsilon(1e-14));
+    for (int c = 0; c < 3; ++c) CHECK(att[c] == doctest::Approx(std::exp(-sigma[c] * 1.5)).epsilon(1e-6)); // float
     rec.set_face_normal(ray(rec.p - d, d), N);
     REQUIRE(rec.front_face);
     REQUIRE(glass.scatter(ray(rec.p - 0.75 * d, d), rec, att, out));
@@ -290,13 +291,13 @@ TEST_CASE("fresnel: the book-interface absorbing dielectric applies Beer's law o
 }
 
 TEST_CASE("conductor: compile_scene maps the new materials and keeps the book's glass Schlick") {
-    material_desc book = compiled_desc(std::make_shared<dielectric>(1.5));
+    compiled_material book = compiled_desc(std::make_shared<dielectric>(1.5));
     CHECK(book.kind == material_kind::dielectric);
-    material_desc exact = compiled_desc(std::make_shared<dielectric>(1.5, color(0.1, 0.2, 0.3)));
-    CHECK(exact.kind == material_kind::exact_dielectric);
+    compiled_material exact = compiled_desc(std::make_shared<dielectric>(1.5, color(0.1, 0.2, 0.3)));
+    CHECK(exact.kind == material_kind::fresnel_dielectric);
     CHECK(exact.refraction_index == 1.5f);
     CHECK(exact.absorption.z == 0.3f);
-    material_desc metal_desc =
+    compiled_material metal_desc =
         compiled_desc(std::make_shared<conductor>(color(0.2, 0.3, 0.4), color(3, 2, 1), color(1, 0.5, 0.25)));
     CHECK(metal_desc.kind == material_kind::conductor);
     CHECK(metal_desc.eta.y == 0.3f);
@@ -325,10 +326,10 @@ TEST_CASE("conductor: invalid n, k, tint or absorption is a scene_error at compi
 }
 
 // ================================================================================================
-// The float kernels (bsdf.h)
+// The material contract (engine/bsdf.h)
 
 TEST_CASE("conductor: the kernel mirrors exactly and weights by tint * Fr(cos) per channel") {
-    material_desc m;
+    compiled_material m;
     m.kind = material_kind::conductor;
     m.albedo = {1.0f, 0.5f, 0.25f};
     m.eta = {0.18f, 0.42f, 1.37f};
@@ -340,7 +341,7 @@ TEST_CASE("conductor: the kernel mirrors exactly and weights by tint * Fr(cos) p
         vec3 d = incident(N, angle);
         for (bool front : {true, false}) {
             vec3f dir, att;
-            REQUIRE(scatter_builtin(m, vec3f(d), vec3f(N), front, rng, dir, att));
+            REQUIRE(test::sample_direction(m, vec3f(d), vec3f(N), front, rng, dir, att));
             vec3 mirror = d - 2 * dot(d, N) * N;
             CHECK((dir.to_double() - mirror).length() < 1e-6);
             double c = std::cos(angle * pi_d / 180);
@@ -366,14 +367,14 @@ long count_exact_reflections(const exact_glass_case& g, float kernel_ior, long N
     const vec3 n = unit_vector(vec3(0.3, 0.9, -0.2));
     const vec3 wi = incident(n, g.angle_deg);
     const double ri = g.front_face ? 1 / g.ior : g.ior; // n_i / n_t
-    material_desc glass;
-    glass.kind = material_kind::exact_dielectric;
+    compiled_material glass;
+    glass.kind = material_kind::fresnel_dielectric;
     glass.refraction_index = kernel_ior;
     glass.absorption = {0.5f, 1.0f, 2.0f}; // the kernel ignores it: Beer's law is the tracer's
     long reflected = 0;
     for (long i = 0; i < N; ++i) {
         vec3f dir, att;
-        REQUIRE(scatter_builtin(glass, vec3f(wi), vec3f(n), g.front_face, rng, dir, att));
+        REQUIRE(test::sample_direction(glass, vec3f(wi), vec3f(n), g.front_face, rng, dir, att));
         if (!(att.x == 1 && att.y == 1 && att.z == 1)) FAIL_CHECK("weight is not 1");
         vec3 d = dir.to_double();
         if (std::fabs(d.length() - 1) > 1e-5) FAIL_CHECK("direction is not unit");

@@ -3,7 +3,9 @@
 // comparison.
 
 #include <rtweekend/camera.h>
+#include <rtweekend/engine/bsdf.h>
 #include <rtweekend/engine/image.h>
+#include <rtweekend/engine/rng.h>
 
 #include <atomic>
 #include <chrono>
@@ -69,6 +71,18 @@ inline rt::camera test_camera(int w, int h, int spp, int depth) {
 inline bool same_bits(const rt::image& a, const rt::image& b) {
     return a.width() == b.width() && a.height() == b.height() && a.data().size() == b.data().size() &&
            std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(float)) == 0;
+}
+
+// One sample of the material contract in the terms of an incoming ray: its unit direction `d`
+// (wo is -d), the unit normal n facing it, and which face it hit; the scattered direction and its
+// weight (f |cos| / pdf). False when the light is absorbed.
+inline bool sample_direction(const rt::compiled_material& m, const rt::vec3f& d, const rt::vec3f& n, bool front_face,
+                             rt::pcg32& rng, rt::vec3f& dir, rt::vec3f& weight) {
+    rt::material_sample s;
+    if (!m.sample(-d, rt::shading_point{n, front_face}, rng, s)) return false;
+    dir = s.wi;
+    weight = s.value;
+    return true;
 }
 
 } // namespace test

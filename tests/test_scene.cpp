@@ -114,14 +114,14 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     REQUIRE(s.materials.size() == 3);
     CHECK(s.spheres.material[0] == s.spheres.material[1]);
     CHECK(s.spheres.material[0] == s.spheres.material[4]);
-    const material_desc& lam = s.materials[s.spheres.material[0]];
+    const compiled_material& lam = s.materials[s.spheres.material[0]];
     CHECK(lam.kind == material_kind::lambertian);
     CHECK(lam.albedo.x == 0.5f);
-    const material_desc& met = s.materials[s.spheres.material[2]];
+    const compiled_material& met = s.materials[s.spheres.material[2]];
     CHECK(met.kind == material_kind::metal);
     CHECK(met.fuzz == 0.4f);
     CHECK(met.albedo.z == 0.3f);
-    const material_desc& gl = s.materials[s.spheres.material[3]];
+    const compiled_material& gl = s.materials[s.spheres.material[3]];
     CHECK(gl.kind == material_kind::dielectric);
     CHECK(gl.refraction_index == 1.33f);
 
@@ -153,8 +153,8 @@ TEST_CASE("compile_scene: user shapes and materials are kept for the virtual pat
     CHECK(s.unbounded_user_shapes[0] == user_shape.get());
     CHECK(s.has_user_materials);
     REQUIRE(s.materials.size() == 1);
-    CHECK(s.materials[0].kind == material_kind::custom);
-    CHECK(s.materials[0].custom != nullptr);
+    CHECK(s.materials[0].kind == material_kind::user);
+    CHECK(s.materials[0].source != nullptr);
 }
 
 TEST_CASE("compile_scene rejects invalid spheres and materials") {
@@ -194,7 +194,7 @@ TEST_CASE("compile_scene rejects invalid spheres and materials") {
 }
 
 TEST_CASE("compile_scene rejects a metal with NaN fuzz (documented: 'NaN fuzz ... throws')") {
-    // scene.h lists "NaN fuzz" among the invalid input that compile_scene rejects. A NaN fuzz is
+    // material_compiler.h lists "NaN fuzz" among the invalid input that compile_scene rejects. A NaN fuzz is
     // an error in the caller's scene and must not render silently as some other material.
     check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<metal>(color(1, 1, 1), nan_d))),
                    "fuzz");

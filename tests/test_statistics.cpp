@@ -15,6 +15,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_helpers.h"
+
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -158,8 +160,8 @@ TEST_CASE("chi2: sample_cosine_direction is cos(theta)/pi about axis and non-axi
     }
 }
 
-TEST_CASE("chi2: the Lambertian kernel (scatter_builtin) scatters cos(theta)/pi about the normal") {
-    material_desc m;
+TEST_CASE("chi2: the Lambertian material's sample() scatters cos(theta)/pi about the normal") {
+    compiled_material m;
     m.kind = material_kind::lambertian;
     m.albedo = {0.3f, 0.6f, 0.9f};
     const vec3 n = unit_vector(vec3(0.5, -0.2, 0.8));
@@ -168,7 +170,7 @@ TEST_CASE("chi2: the Lambertian kernel (scatter_builtin) scatters cos(theta)/pi 
     std::vector<double> obs, exp;
     cosine_counts(n, 100000, [&] {
         vec3f dir, att;
-        REQUIRE(scatter_builtin(m, wi, vec3f(n), true, rng, dir, att));
+        REQUIRE(test::sample_direction(m, wi, vec3f(n), true, rng, dir, att));
         return dir;
     }, obs, exp);
     check_accepted(obs, exp);
@@ -433,7 +435,7 @@ void fuzz_counts(const fuzz_case& fc, long N, pcg32& rng, std::vector<double>& o
     const vec3 mirror = wi - 2 * dot(wi, n) * n;
     fuzz_model model(mirror, n, fc.fuzz);
 
-    material_desc metal_desc;
+    compiled_material metal_desc;
     metal_desc.kind = material_kind::metal;
     metal_desc.albedo = {0.9f, 0.8f, 0.7f};
     metal_desc.fuzz = float(fc.fuzz);
@@ -450,7 +452,7 @@ void fuzz_counts(const fuzz_case& fc, long N, pcg32& rng, std::vector<double>& o
     for (long i = 0; i < N; ++i) {
         vec3f dir, att;
         bool ok = wrong ? wrong(vec3f(wi), vec3f(n), dir)
-                        : scatter_builtin(metal_desc, vec3f(wi), vec3f(n), true, rng, dir, att);
+                        : test::sample_direction(metal_desc, vec3f(wi), vec3f(n), true, rng, dir, att);
         if (!ok) {
             obs[cells] += 1;
             continue;
@@ -528,13 +530,13 @@ long count_reflections(const glass_case& g, float kernel_ior, long N, pcg32& rng
     const double th = g.angle_deg * pi_d / 180;
     const vec3 wi = -std::cos(th) * n + std::sin(th) * t;
     const double ri = g.front_face ? 1 / g.ior : g.ior;
-    material_desc glass;
+    compiled_material glass;
     glass.kind = material_kind::dielectric;
     glass.refraction_index = kernel_ior;
     long reflected = 0;
     for (long i = 0; i < N; ++i) {
         vec3f dir, att;
-        REQUIRE(scatter_builtin(glass, vec3f(wi), vec3f(n), g.front_face, rng, dir, att));
+        REQUIRE(test::sample_direction(glass, vec3f(wi), vec3f(n), g.front_face, rng, dir, att));
         vec3 d = dir.to_double();
         if (dot(d, n) > 0) {
             ++reflected;
@@ -755,7 +757,7 @@ TEST_CASE("energy: every built-in kernel returns attenuation in [0, 1] and unit 
     pcg32 rng(51);
     long scattered = 0, absorbed = 0;
     for (int i = 0; i < 100000; ++i) {
-        material_desc m;
+        compiled_material m;
         m.kind = static_cast<material_kind>(rng.next_u32() % 3);
         auto u = [&] {
             float v = rng.next_float();
@@ -769,7 +771,7 @@ TEST_CASE("energy: every built-in kernel returns attenuation in [0, 1] and unit 
         if (dot(wi, n) > 0) wi = -1.0f * wi; // facing the normal
         bool front = rng.next_u32() & 1;
         vec3f dir, att;
-        if (!scatter_builtin(m, wi, n, front, rng, dir, att)) {
+        if (!test::sample_direction(m, wi, n, front, rng, dir, att)) {
             ++absorbed;
             CHECK(m.kind == material_kind::metal); // only fuzzy metal absorbs
             continue;

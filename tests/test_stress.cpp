@@ -436,36 +436,36 @@ TEST_CASE("stress: silhouettes sampled densely: grazing hits stay finite and wit
     }
 }
 
-TEST_CASE("stress: scatter_builtin at grazing and wrong-side incidence returns finite unit directions") {
+TEST_CASE("stress: material sample() at grazing and wrong-side incidence returns finite unit directions") {
     // Incidence with wi.n = 0 (tangent) and with wi slightly on the normal's own side (which
     // float error can produce for grazing hits): every material must return a finite unit
     // direction and an attenuation in [0, 1], or absorb.
-    material_desc lamb;
+    compiled_material lamb;
     lamb.kind = material_kind::lambertian;
     lamb.albedo = {0.5f, 0.5f, 0.5f};
-    material_desc mirror;
+    compiled_material mirror;
     mirror.kind = material_kind::metal;
     mirror.albedo = {1, 1, 1};
-    material_desc fuzzy = mirror;
+    compiled_material fuzzy = mirror;
     fuzzy.fuzz = 0.7f;
-    material_desc glass;
+    compiled_material glass;
     glass.kind = material_kind::dielectric;
     glass.refraction_index = 1.5f;
-    material_desc bubble = glass;
+    compiled_material bubble = glass;
     bubble.refraction_index = 1.0f / 1.5f;
-    const material_desc mats[] = {lamb, mirror, fuzzy, glass, bubble};
+    const compiled_material mats[] = {lamb, mirror, fuzzy, glass, bubble};
 
     const vec3f n = normalize(vec3f(0.2f, 1, -0.3f));
     const vec3f t = normalize(cross(n, vec3f(1, 0, 0)));
     pcg32 rng(4242);
     long scattered = 0;
-    for (const material_desc& m : mats) {
+    for (const compiled_material& m : mats) {
         for (float e : {0.0f, 1e-7f, -1e-7f, 1e-4f, -1e-4f}) {
             vec3f wi = normalize(t + e * n); // e > 0: slightly on the normal's side
             for (bool front : {true, false}) {
                 for (int i = 0; i < 200; ++i) {
                     vec3f dir, att;
-                    if (!scatter_builtin(m, wi, n, front, rng, dir, att)) continue;
+                    if (!test::sample_direction(m, wi, n, front, rng, dir, att)) continue;
                     ++scattered;
                     CAPTURE(int(m.kind));
                     CAPTURE(e);
@@ -619,7 +619,7 @@ TEST_CASE("stress: total internal reflection beyond the critical angle always re
     for (const vec3& nd : normals) {
         const vec3 td = unit_vector(cross(nd, vec3(1, 0.5, 0.25)));
         for (const medium& md : media) {
-            material_desc glass;
+            compiled_material glass;
             glass.kind = material_kind::dielectric;
             glass.refraction_index = float(md.ior);
             const double ri = md.front_face ? 1 / md.ior : md.ior; // ratio n_incident / n_transmitted
@@ -633,7 +633,7 @@ TEST_CASE("stress: total internal reflection beyond the critical angle always re
                 long mirrors = 0;
                 for (int i = 0; i < 500; ++i) {
                     vec3f dir, att;
-                    REQUIRE(scatter_builtin(glass, vec3f(wi), vec3f(nd), md.front_face, rng, dir, att));
+                    REQUIRE(test::sample_direction(glass, vec3f(wi), vec3f(nd), md.front_face, rng, dir, att));
                     REQUIRE(att.x == 1);
                     REQUIRE(att.y == 1);
                     REQUIRE(att.z == 1);
@@ -647,7 +647,7 @@ TEST_CASE("stress: total internal reflection beyond the critical angle always re
             long refracted = 0;
             for (int i = 0; i < 500; ++i) {
                 vec3f dir, att;
-                REQUIRE(scatter_builtin(glass, vec3f(wi), vec3f(nd), md.front_face, rng, dir, att));
+                REQUIRE(test::sample_direction(glass, vec3f(wi), vec3f(nd), md.front_face, rng, dir, att));
                 refracted += dot(dir.to_double(), nd) < 0;
             }
             CHECK(refracted > 0);

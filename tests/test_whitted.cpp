@@ -565,18 +565,18 @@ TEST_CASE("whitted: a book-style lambertian sphere shades with kd = albedo") {
 
 // CENG477's files give materials no type: a non-zero MirrorReflectance makes a mirror there.
 TEST_CASE("whitted: an untyped material with a MirrorReflectance reflects") {
-    auto quad = [](double z, bool facing_plus_z, const rt::whitted_material& m) {
+    auto quad = [](double z, bool facing_plus_z, std::shared_ptr<rt::whitted_material> m) {
         auto mesh = std::make_shared<rt::triangle_mesh>();
         mesh->positions = {rt::point3(-3, -3, z), rt::point3(3, -3, z), rt::point3(3, 3, z), rt::point3(-3, 3, z)};
         mesh->faces = facing_plus_z ? std::vector<std::array<uint32_t, 3>>{{0, 1, 2}, {0, 2, 3}}
                                     : std::vector<std::array<uint32_t, 3>>{{0, 2, 1}, {0, 3, 2}};
-        mesh->mat = std::make_shared<rt::whitted_surface>(m);
+        mesh->mat = std::move(m);
         return mesh;
     };
-    rt::whitted_material mirror; // no type given, as in CENG477
-    mirror.mirror = rt::color(0.5, 0.5, 0.5);
-    rt::whitted_material wall;
-    wall.ambient = rt::color(1, 0.5, 0.25);
+    auto mirror = std::make_shared<rt::whitted_material>(); // no type given, as in CENG477
+    mirror->mirror = rt::color(0.5, 0.5, 0.5);
+    auto wall = std::make_shared<rt::whitted_material>();
+    wall->ambient = rt::color(1, 0.5, 0.25);
     rt::whitted_scene s;
     s.ambient_light = rt::color(100, 100, 100);
     s.max_recursion_depth = 1;
@@ -600,10 +600,10 @@ class wrapped_sphere : public rt::hittable {
 } // namespace
 
 TEST_CASE("whitted: a user-written hittable is shaded with the material it reports") {
-    rt::whitted_material m;
-    m.diffuse = rt::color(0.5, 0.25, 0.125);
+    auto m = std::make_shared<rt::whitted_material>();
+    m->diffuse = rt::color(0.5, 0.25, 0.125);
     rt::whitted_scene s;
-    s.world.add(std::make_shared<wrapped_sphere>(std::make_shared<rt::whitted_surface>(m)));
+    s.world.add(std::make_shared<wrapped_sphere>(m));
     s.lights.push_back({rt::point3(0, 0, 0), rt::color(1600, 1600, 1600)});
     // As for the built-in sphere: E = 1600 / 4^2 = 100 at (0, 0, -4), n.l = 1: (50, 25, 12.5).
     std::vector<unsigned char> b = render_3x3(s);

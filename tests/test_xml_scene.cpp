@@ -75,9 +75,9 @@ void check_vec(const vec3& v, double x, double y, double z, double eps = 0) {
 }
 
 const whitted_material& params_of(const std::shared_ptr<material>& m) {
-    auto s = std::dynamic_pointer_cast<whitted_surface>(m);
+    auto s = std::dynamic_pointer_cast<whitted_material>(m);
     REQUIRE(s);
-    return s->params();
+    return *s;
 }
 
 // Everything a scene holds, as text: two scenes that dump alike are the same scene (materials

@@ -1,52 +1,139 @@
 #pragma once
-// The renderer's materials: a tagged table entry per material and one float kernel that
-// samples the scattered direction. The kernels follow the book's materials exactly (same
-// distributions, same absorption rule for fuzzy metal, the same Schlick choice for glass), so
-// an image converges to what the book's code converges to. Two more materials use the exact
-// Fresnel equations (fresnel.h): a smooth conductor, and glass that chooses reflection with the
-// exact Fresnel probability and absorbs inside by Beer's law (applied by the path tracer, which
-// knows the distance travelled: render.h, trace_path).
+// The material contract: what every built-in material answers, once, for every integrator (the
+// path tracer, the Whitted integrator, and light sampling to come), in the manner of pbrt's BxDFs
+// (Pharr, Jakob, Humphreys, Physically Based Rendering, 4th ed., ch. 9) and Nori's BSDFs.
+//
+//   compiled_material m;                    a table entry (material_compiler.h makes them)
+//   m.sample(wo, sp, u, s)                  draws a direction wi; s.value = f |cos| / pdf, s.pdf, s.lobe
+//   m.eval(wo, wi, sp)                      f(wo, wi) |cos theta_i|       (0 on delta lobes)
+//   m.pdf(wo, wi, sp)                       the solid-angle density sample() draws wi with
+//   m.emitted(wo, sp)                       radiance the surface emits towards wo
+//   m.transmittance(d)                      the fraction of light left after d inside (Beer's law)
+//
+// Directions are unit vectors pointing away from the surface: wo towards where the light goes
+// (the previous vertex: minus the ray's direction), wi towards where it comes from (the scattered
+// ray's direction). The shading point gives the unit normal on wo's side and which face was hit.
+//
+// Lobes. Glass, mirrors and smooth conductors scatter into single directions (delta lobes): their
+// eval and pdf are 0 for every pair of directions, and sample() reports the lobe's discrete
+// probability as s.pdf. Light sampling must treat them apart (pbrt, 4th ed., 9.1.3). sample() can
+// be restricted to some lobes: the Whitted integrator follows the delta reflection and the delta
+// transmission one after the other (as pbrt-v3's Whitted integrator does with BxDF type flags).
+//
+// The book's fuzzy metal (the mirror direction moved by fuzz times a uniform point of the unit
+// ball) has a density in closed form, fuzzy_mirror_density below, so it is a glossy lobe with a
+// real pdf, fit for multiple importance sampling, not a delta lobe. Below a fuzz of 1e-4 the lobe
+// is narrower than float directions can resolve; it is then flagged delta (it still draws the
+// book's offset, so images are unchanged).
+//
+// Material by material (kernels that follow the book's code exactly, so a render converges to what
+// the book's code converges to):
+//   lambertian            cosine-weighted: value = albedo, pdf = cos / pi
+//   metal                 mirror plus fuzz in the ball; draws below the surface are absorbed (the
+//                         book's rule); value = albedo
+//   dielectric            the book's glass: reflect with Schlick's probability R, else refract
+//   fresnel_dielectric    the same with the exact Fresnel reflectance; absorbs inside (Beer)
+//   conductor             mirror weighted by tint * Fr(cos) per channel (exact, complex index)
+//   user                  a user's material subclass: the integrators call its virtual scatter()
+//                         (user_material.h); it has no pdf and is treated like a delta lobe
+// A material compiled from the CENG795 course's (whitted_material) may also carry a Lambertian
+// base (`diffuse`) under its delta lobe; sample() picks the base or the lobe in proportion to
+// their largest reflectances.
 
+#include "../constants.h"
 #include "fresnel.h"
-#include "../material.h"
-#include "rng.h"
 #include "sampling.h"
 #include "vec3f.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
 namespace rt {
 
-// exact_dielectric: dielectric(ior, absorption), exact Fresnel and Beer's law.
-enum class material_kind : uint8_t { lambertian, metal, dielectric, custom, conductor, exact_dielectric };
+class material;
 
-struct material_desc {
-    material_kind kind = material_kind::lambertian;
-    vec3f albedo{0.5f, 0.5f, 0.5f};    // conductor: the tint
-    float fuzz = 0;                    // metal
-    float refraction_index = 1;        // dielectric, exact_dielectric
-    vec3f absorption{0, 0, 0};         // exact_dielectric: per unit length inside
-    vec3f eta{1, 1, 1}, k{0, 0, 0};    // conductor: complex index eta + ik per channel
-    const material* custom = nullptr;  // a user's material subclass (virtual path)
+enum class material_kind : uint8_t { lambertian, metal, dielectric, fresnel_dielectric, conductor, user };
+
+// Which lobes sample() may choose from: bit flags.
+enum lobe : uint8_t {
+    non_delta_lobe = 1,          // diffuse and glossy reflection, with a density
+    delta_reflection = 2,        // a mirror direction
+    delta_transmission = 4,      // a refracted direction
+    all_lobes = 7,
 };
 
-// Schlick's approximation in float (see schlick_reflectance in material.h).
-inline float schlick_reflectance_f(float cosine, float ri) {
-    float r0 = (1 - ri) / (1 + ri);
-    r0 = r0 * r0;
-    float m = 1 - cosine;
-    return r0 + (1 - r0) * (m * m * m * m * m);
-}
+// Where a material is asked: the unit normal on the side of wo (the geometric or the shading
+// normal, as the integrator chooses) and whether the ray hit the front face (glass needs to
+// know which index is on which side).
+struct shading_point {
+    vec3f n;
+    bool front_face = true;
+};
 
-// Refraction of unit `wi` through the unit normal `n` facing it, index ratio `ri` (book form).
-inline vec3f refract_f(const vec3f& wi, const vec3f& n, float cos_theta, float ri) {
-    vec3f perp = ri * (wi + cos_theta * n);
+struct material_sample {
+    vec3f wi;                // unit direction the light arrives from: the scattered ray's direction
+    vec3f value;             // f |cos theta_i| / pdf: what the path throughput is multiplied by
+    float pdf = 0;           // solid-angle density; for a delta lobe, the probability of choosing it
+    lobe sampled = non_delta_lobe;
+    bool is_delta() const { return sampled != non_delta_lobe; }
+};
+
+// Below this fuzz a metal's lobe is flagged delta (see the top of the file).
+inline constexpr float min_glossy_fuzz = 1e-4f;
+
+struct compiled_material {
+    material_kind kind = material_kind::lambertian;
+    vec3f albedo{0.5f, 0.5f, 0.5f}; // lambertian, metal; conductor: the tint
+    float fuzz = 0;                 // metal
+    float refraction_index = 1;     // dielectric, fresnel_dielectric
+    vec3f absorption{0, 0, 0};      // fresnel_dielectric: per unit length inside
+    vec3f eta{1, 1, 1}, k{0, 0, 0}; // conductor: complex index eta + ik per channel
+    vec3f diffuse{0, 0, 0};         // a Lambertian base under a delta lobe (course materials); 0: none
+    const material* source = nullptr; // what it was compiled from; a user material is called through it
+
+    // Draws wi for wo, restricted to `lobes`; false when the light is absorbed (or no lobe of
+    // `lobes` exists). Draws its random numbers from u.next_float() (uniform in [0, 1)).
+    template <class Uniform>
+    bool sample(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s, lobe lobes = all_lobes) const;
+    vec3f eval(const vec3f& wo, const vec3f& wi, const shading_point& sp) const;
+    float pdf(const vec3f& wo, const vec3f& wi, const shading_point& sp) const;
+    // No built-in material emits yet.
+    vec3f emitted(const vec3f& /*wo*/, const shading_point& /*sp*/) const { return {0, 0, 0}; }
+
+    // Whether light travelling inside loses energy with distance (absorbing glass), and how much
+    // is left after `distance`: exp(-absorption * distance) per channel (Beer-Lambert).
+    bool absorbs_inside() const {
+        return kind == material_kind::fresnel_dielectric && (absorption.x > 0 || absorption.y > 0 || absorption.z > 0);
+    }
+    vec3f transmittance(float distance) const;
+
+    // Whether light can pass through the surface (its back face must never be culled).
+    bool transmits() const {
+        return kind == material_kind::dielectric || kind == material_kind::fresnel_dielectric || kind == material_kind::user;
+    }
+    bool has_diffuse_base() const { return diffuse.x > 0 || diffuse.y > 0 || diffuse.z > 0; }
+    bool is_glossy_metal() const { return kind == material_kind::metal && fuzz >= min_glossy_fuzz; }
+
+  private:
+    template <class Uniform>
+    bool sample_lobe(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s, lobe lobes) const;
+    // The probability sample() picks the diffuse base over the lobe.
+    float base_probability() const;
+};
+
+// --- the pieces the materials share -------------------------------------------------------------
+
+inline vec3f reflect_f(const vec3f& v, const vec3f& n) { return v - 2.0f * dot(v, n) * n; }
+
+// Refraction of the unit direction `d` through the unit normal `n` facing it, for the index
+// ratio ri = n_incident / n_transmitted and cos_theta = -d.n (the book's form: perpendicular and
+// parallel parts).
+inline vec3f refract_f(const vec3f& d, const vec3f& n, float cos_theta, float ri) {
+    vec3f perp = ri * (d + cos_theta * n);
     vec3f parallel = -std::sqrt(std::fabs(1.0f - length_squared(perp))) * n;
     return perp + parallel;
 }
-
-inline vec3f reflect_f(const vec3f& v, const vec3f& n) { return v - 2.0f * dot(v, n) * n; }
 
 // Beer-Lambert law: the fraction of light left after a distance d in a medium of absorption
 // coefficient sigma, exp(-sigma d), per channel.
@@ -54,67 +141,166 @@ inline vec3f beer_transmittance(const vec3f& sigma, float d) {
     return {std::exp(-sigma.x * d), std::exp(-sigma.y * d), std::exp(-sigma.z * d)};
 }
 
-// Samples the direction a built-in material scatters the unit direction `wi` into, at a surface
-// whose unit normal `n` faces the incoming ray. Returns false when the ray is absorbed. On
-// success `dir` is a unit vector and `attenuation` the throughput weight.
-inline bool scatter_builtin(const material_desc& m, const vec3f& wi, const vec3f& n, bool front_face, pcg32& rng,
-                            vec3f& dir, vec3f& attenuation) {
-    switch (m.kind) {
+inline float max_component(const vec3f& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
+
+// The density of the directions of the book's fuzzy metal, w = normalize(m + f B) with m the unit
+// mirror direction and B uniform in the unit ball, f <= 1. m + f B is uniform in the ball of
+// radius f about m (volume 4 pi f^3 / 3); in spherical coordinates about the surface point
+// (dV = r^2 dr dw) the density of w is the integral of r^2 along the chord r w that lies in the
+// ball, over the volume:
+//   p(w) = ((c + s)^3 - (c - s)^3) / 3 / (4 pi f^3 / 3) = s (3 c^2 + s^2) / (2 pi f^3),
+// with c = w.m and s^2 = f^2 - |w x m|^2 the half chord squared; 0 outside the cone (s^2 <= 0).
+// (For f = 1: p = 2 c^3 / pi.) sin^2 comes from the cross product, which keeps its digits when w
+// is close to m.
+inline float fuzzy_mirror_density(const vec3f& w, const vec3f& m, float f) {
+    const float c = dot(w, m);
+    const float s2 = f * f - length_squared(cross(w, m));
+    if (!(c > 0 && s2 > 0)) return 0;
+    const float s = std::sqrt(s2);
+    return s * (3.0f * c * c + s2) / (2.0f * pi_f * f * f * f);
+}
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+inline float compiled_material::base_probability() const {
+    const float base = max_component(diffuse);
+    const float lobe_weight = kind == material_kind::dielectric || kind == material_kind::fresnel_dielectric
+                                  ? 1.0f
+                                  : max_component(albedo);
+    return base / (base + lobe_weight);
+}
+
+template <class Uniform>
+bool compiled_material::sample(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s,
+                               lobe lobes) const {
+    if (!has_diffuse_base() || !(lobes & non_delta_lobe)) return sample_lobe(wo, sp, u, s, lobes);
+    {
+        // A diffuse base under a delta lobe: choose one in proportion to their reflectances (or
+        // the base alone, when the lobe is not asked for).
+        const bool lobe_allowed = (lobes & ~non_delta_lobe) != 0;
+        const float p_base = lobe_allowed ? base_probability() : 1.0f;
+        if (p_base >= 1.0f || u.next_float() < p_base) {
+            float u1 = u.next_float(), u2 = u.next_float();
+            s.wi = sample_cosine_direction(sp.n, u1, u2);
+            s.value = diffuse * (1.0f / p_base);
+            s.pdf = p_base * std::fmax(dot(s.wi, sp.n), 0.0f) * (1.0f / pi_f);
+            s.sampled = non_delta_lobe;
+            return true;
+        }
+        if (!sample_lobe(wo, sp, u, s, lobes)) return false;
+        s.value *= 1.0f / (1.0f - p_base);
+        s.pdf *= 1.0f - p_base;
+        return true;
+    }
+}
+
+template <class Uniform>
+bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s,
+                                    lobe lobes) const {
+    const vec3f d = -wo; // the incoming ray's direction
+    const vec3f& n = sp.n;
+    switch (kind) {
     case material_kind::lambertian: {
-        float u1 = rng.next_float(), u2 = rng.next_float();
-        dir = sample_cosine_direction(n, u1, u2);
-        attenuation = m.albedo;
+        if (!(lobes & non_delta_lobe)) return false;
+        float u1 = u.next_float(), u2 = u.next_float();
+        s.wi = sample_cosine_direction(n, u1, u2);
+        s.value = albedo;
+        s.pdf = std::fmax(dot(s.wi, n), 0.0f) * (1.0f / pi_f);
+        s.sampled = non_delta_lobe;
         return true;
     }
     case material_kind::metal: {
-        vec3f d = reflect_f(wi, n);
-        if (m.fuzz > 0) {
-            float u1 = rng.next_float(), u2 = rng.next_float(), u3 = rng.next_float();
-            d += m.fuzz * sample_unit_ball(u1, u2, u3);
+        const bool glossy = is_glossy_metal();
+        if (!(lobes & (glossy ? non_delta_lobe : delta_reflection))) return false;
+        const vec3f mirror = reflect_f(d, n);
+        vec3f dir = mirror;
+        if (fuzz > 0) {
+            float u1 = u.next_float(), u2 = u.next_float(), u3 = u.next_float();
+            dir += fuzz * sample_unit_ball(u1, u2, u3);
         }
         // The book absorbs fuzzed directions that point below the surface.
-        if (!(dot(d, n) > 0)) return false;
-        dir = normalize(d);
-        attenuation = m.albedo;
+        if (!(dot(dir, n) > 0)) return false;
+        s.wi = normalize(dir);
+        s.value = albedo;
+        s.pdf = glossy ? fuzzy_mirror_density(s.wi, mirror, fuzz) : 1.0f;
+        s.sampled = glossy ? non_delta_lobe : delta_reflection;
         return true;
     }
-    case material_kind::dielectric: {
-        float ri = front_face ? 1.0f / m.refraction_index : m.refraction_index;
-        float cos_theta = std::fmin(-dot(wi, n), 1.0f);
-        float sin_theta = std::sqrt(std::fmax(0.0f, 1.0f - cos_theta * cos_theta));
-        bool cannot_refract = ri * sin_theta > 1.0f;
-        if (cannot_refract || schlick_reflectance_f(cos_theta, ri) > rng.next_float())
-            dir = reflect_f(wi, n);
-        else
-            dir = normalize(refract_f(wi, n, cos_theta, ri));
-        attenuation = {1, 1, 1};
+    case material_kind::dielectric:
+    case material_kind::fresnel_dielectric: {
+        // Reflect with probability R (Schlick's for the book's glass, the exact Fresnel
+        // reflectance otherwise; 1 under total internal reflection), else refract: the weight is
+        // 1 either way. Restricted to one lobe, that lobe's weight is R or 1 - R.
+        const bool schlick = kind == material_kind::dielectric;
+        const float ri = sp.front_face ? 1.0f / refraction_index : refraction_index; // n_i / n_t
+        const float cos_theta = std::fmin(-dot(d, n), 1.0f);
+        float r = 1.0f; // the reflected fraction
+        bool cannot_refract;
+        if (schlick) {
+            const float sin_theta = std::sqrt(std::fmax(0.0f, 1.0f - cos_theta * cos_theta));
+            cannot_refract = ri * sin_theta > 1.0f;
+            if (!cannot_refract) r = schlick_reflectance(cos_theta, ri);
+        } else {
+            const float eta = sp.front_face ? refraction_index : 1.0f / refraction_index; // n_t / n_i
+            r = fresnel_dielectric_f(cos_theta, eta);
+            cannot_refract = r >= 1.0f;
+        }
+        bool reflect;
+        if ((lobes & delta_reflection) && (lobes & delta_transmission)) {
+            // The draws of the book's code: none when the ray cannot refract.
+            reflect = cannot_refract || (schlick ? r > u.next_float() : u.next_float() < r);
+            s.value = {1, 1, 1};
+            s.pdf = reflect ? r : 1.0f - r;
+        } else if (lobes & delta_reflection) {
+            reflect = true;
+            s.value = {r, r, r};
+            s.pdf = 1;
+        } else if ((lobes & delta_transmission) && !cannot_refract) {
+            reflect = false;
+            s.value = {1.0f - r, 1.0f - r, 1.0f - r};
+            s.pdf = 1;
+        } else {
+            return false;
+        }
+        s.wi = reflect ? reflect_f(d, n) : normalize(refract_f(d, n, cos_theta, ri));
+        s.sampled = reflect ? delta_reflection : delta_transmission;
         return true;
     }
     case material_kind::conductor: {
-        float cos_i = -dot(wi, n);
-        dir = normalize(reflect_f(wi, n));
-        vec3f fr{fresnel_conductor_f(cos_i, m.eta.x, m.k.x), fresnel_conductor_f(cos_i, m.eta.y, m.k.y),
-                 fresnel_conductor_f(cos_i, m.eta.z, m.k.z)};
-        attenuation = m.albedo * fr;
+        if (!(lobes & delta_reflection)) return false;
+        s.wi = normalize(reflect_f(d, n));
+        s.value = albedo * fresnel_conductor_f(-dot(d, n), eta, k);
+        s.pdf = 1;
+        s.sampled = delta_reflection;
         return true;
     }
-    case material_kind::exact_dielectric: {
-        // Reflect with probability Fr exactly (Fr = 1 under total internal reflection), else
-        // refract: the estimator's weight is 1 either way. Absorption is the caller's (Beer).
-        float ri = front_face ? 1.0f / m.refraction_index : m.refraction_index; // n_i / n_t
-        float eta = front_face ? m.refraction_index : 1.0f / m.refraction_index;
-        float cos_theta = std::fmin(-dot(wi, n), 1.0f);
-        float fr = fresnel_dielectric_f(cos_theta, eta);
-        if (fr >= 1 || rng.next_float() < fr)
-            dir = reflect_f(wi, n);
-        else
-            dir = normalize(refract_f(wi, n, cos_theta, ri));
-        attenuation = {1, 1, 1};
-        return true;
-    }
-    case material_kind::custom: break;
+    case material_kind::user: break; // the integrators call the user's scatter() (user_material.h)
     }
     return false;
+}
+
+inline vec3f compiled_material::eval(const vec3f& wo, const vec3f& wi, const shading_point& sp) const {
+    const float cos_i = dot(wi, sp.n);
+    if (!(cos_i > 0)) return {0, 0, 0}; // every density lobe here reflects
+    vec3f f{0, 0, 0};
+    if (kind == material_kind::lambertian) f = albedo * (cos_i * (1.0f / pi_f));
+    if (has_diffuse_base()) f += diffuse * (cos_i * (1.0f / pi_f));
+    if (is_glossy_metal()) f += albedo * fuzzy_mirror_density(wi, reflect_f(-wo, sp.n), fuzz);
+    return f;
+}
+
+inline float compiled_material::pdf(const vec3f& wo, const vec3f& wi, const shading_point& sp) const {
+    const float cos_i = dot(wi, sp.n);
+    if (!(cos_i > 0)) return 0;
+    if (kind == material_kind::lambertian) return cos_i * (1.0f / pi_f);
+    if (has_diffuse_base()) return base_probability() * cos_i * (1.0f / pi_f); // the lobe is a delta one
+    if (is_glossy_metal()) return fuzzy_mirror_density(wi, reflect_f(-wo, sp.n), fuzz);
+    return 0;
+}
+
+inline vec3f compiled_material::transmittance(float distance) const {
+    if (!absorbs_inside()) return {1, 1, 1};
+    return beer_transmittance(absorption, distance);
 }
 
 } // namespace rt

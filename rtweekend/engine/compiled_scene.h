@@ -19,6 +19,7 @@
 #include "../hittable.h"
 #include "bsdf.h"
 #include "bvh.h"
+#include "force_inline.h"
 #include "leaf_query.h"
 #include "sphere_set.h"
 #include "surface_hit.h"
@@ -36,7 +37,7 @@ namespace rt {
 // Calls f(std::integral_constant<shape_kind, K>{}) for the kind K = `kind`: the one place that
 // turns a shape kind known at run time into the compile-time kind a kernel is chosen by.
 template <class F>
-decltype(auto) with_shape_kind(shape_kind kind, F&& f) {
+RTWEEKEND_FORCE_INLINE decltype(auto) with_shape_kind(shape_kind kind, F&& f) {
     switch (kind) {
     case shape_kind::sphere: return f(std::integral_constant<shape_kind, shape_kind::sphere>{});
     case shape_kind::triangle: return f(std::integral_constant<shape_kind, shape_kind::triangle>{});
@@ -48,7 +49,7 @@ decltype(auto) with_shape_kind(shape_kind kind, F&& f) {
 class compiled_scene {
   public:
     vec3 origin; // world position that float coordinates are relative to
-    std::vector<material_desc> materials;
+    std::vector<compiled_material> materials;
     sphere_set spheres;
     triangle_set triangles;
     user_shape_set user_shapes; // user-written hittables with a bounding box
@@ -102,7 +103,7 @@ class compiled_scene {
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 template <query Q, shape_kind K>
-bool compiled_scene::leaf_kernel(const ray3f& r, uint32_t ref, float& t_best, hit_ref& best, leaf_state& state) const {
+RTWEEKEND_FORCE_INLINE bool compiled_scene::leaf_kernel(const ray3f& r, uint32_t ref, float& t_best, hit_ref& best, leaf_state& state) const {
     const uint32_t first = bvh_ref::first(ref), count = bvh_ref::count(ref);
     if constexpr (K == shape_kind::sphere) {
         return spheres.intersect_leaf<Q>(r, first, count, t_best, best);

@@ -5,6 +5,8 @@
 //   double fresnel_conductor(double cos_i, double n, double k); // index n + ik, seen from index 1
 //   float  fresnel_dielectric_f(float cos_i, float eta);     // the same, for the float kernels
 //   float  fresnel_conductor_f(float cos_i, float n, float k);
+//   vec3f  fresnel_conductor_f(float cos_i, vec3f n, vec3f k); // per channel: coloured metals
+//   T      schlick_reflectance(T cos_i, T ri);                 // Schlick's approximation
 //
 // cos_i is the cosine of the angle of incidence, measured on the incident side, in [0, 1]
 // (values outside are clamped; NaN reads as grazing). The result is the reflected fraction of
@@ -14,7 +16,12 @@
 //   - fresnel_conductor needs n > 0, k >= 0, both below 1e70 (the renderer stores them as float,
 //     far inside that); with k = 0 it equals fresnel_dielectric(cos_i, n). At normal incidence it
 //     is ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2).
-// Schlick's approximation, which the book's glass uses, stays in material.h.
+//
+// Schlick's approximation (C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
+// 1994), which the book's glass uses: r0 + (1 - r0)(1 - cos)^5 with r0 = ((1 - ri)/(1 + ri))^2, for
+// the ratio ri of refractive indices, in double and float.
+
+#include "vec3f.h"
 
 namespace rt {
 
@@ -22,6 +29,15 @@ double fresnel_dielectric(double cos_i, double eta);
 double fresnel_conductor(double cos_i, double n, double k);
 float fresnel_dielectric_f(float cos_i, float eta);
 float fresnel_conductor_f(float cos_i, float n, float k);
+vec3f fresnel_conductor_f(float cos_i, const vec3f& n, const vec3f& k);
+
+template <class T>
+T schlick_reflectance(T cosine, T ri) {
+    T r0 = (1 - ri) / (1 + ri);
+    r0 = r0 * r0;
+    T m = 1 - cosine;
+    return r0 + (1 - r0) * (m * m * m * m * m);
+}
 
 } // namespace rt
 
@@ -80,6 +96,10 @@ inline double fresnel_conductor(double cos_i, double n, double k) {
 // In double inside: k^2 of a good conductor squared again (t0 * t0) leaves float's range early.
 inline float fresnel_conductor_f(float cos_i, float n, float k) {
     return static_cast<float>(fresnel_conductor(cos_i, n, k));
+}
+
+inline vec3f fresnel_conductor_f(float cos_i, const vec3f& n, const vec3f& k) {
+    return {fresnel_conductor_f(cos_i, n.x, k.x), fresnel_conductor_f(cos_i, n.y, k.y), fresnel_conductor_f(cos_i, n.z, k.z)};
 }
 
 } // namespace rt

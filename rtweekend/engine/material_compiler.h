@@ -1,18 +1,18 @@
 #pragma once
-// compile_material: the renderer's table entry (bsdf.h) for a material of the teaching surface,
-// after checking its parameters. The built-in materials are recognised by their exact type; any
-// other material (a user's own subclass, or a subclass of a built-in one) becomes a user entry,
-// rendered through its virtual scatter().
+// compile_material: the renderer's table entry (the material contract, bsdf.h) for a material of
+// the teaching surface, after checking its parameters. The built-in materials are recognised by
+// their exact type; any other material (a user's own subclass, or a subclass of a built-in one)
+// becomes a user entry, rendered through its virtual scatter().
 //
 // Throws scene_error for a parameter the renderer cannot use: a negative or non-finite colour,
 // a NaN or negative fuzz, a refraction index that is not positive and finite, a conductor's n
-// that is not positive.
+// that is not positive, a negative or non-finite Phong exponent or absorption index.
 
 #include "../material.h"
 #include "../scene_error.h"
+#include "../whitted_material.h"
 #include "bsdf.h"
 #include "validate.h"
-#include "vec3f.h"
 
 #include <cmath>
 #include <string>
@@ -20,54 +20,69 @@
 
 namespace rt {
 
-material_desc compile_material(const material& m);
+compiled_material compile_material(const material& m);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
-inline material_desc compile_material(const material& m) {
-    material_desc d;
+namespace detail {
+
+inline void check_refraction_index(double ri, const char* what) {
+    if (!(std::isfinite(ri) && ri > 0))
+        throw scene_error(std::string(what) + " must be positive and finite, got " + std::to_string(ri));
+}
+
+inline void check_whitted_material(const whitted_material& w) {
+    check_color(w.ambient, "ambient reflectance");
+    check_color(w.diffuse, "diffuse reflectance");
+    check_color(w.specular, "specular reflectance");
+    check_color(w.mirror, "mirror reflectance");
+    check_color(w.absorption_coefficient, "absorption coefficient");
+    if (!(std::isfinite(w.phong_exponent) && w.phong_exponent >= 0))
+        throw scene_error("Phong exponent must be finite and non-negative, got " + std::to_string(w.phong_exponent));
+    check_refraction_index(w.refraction_index, "refraction index");
+    if (!(std::isfinite(w.absorption_index) && w.absorption_index >= 0))
+        throw scene_error("absorption index must be finite and non-negative, got " + std::to_string(w.absorption_index));
+}
+
+} // namespace detail
+
+inline compiled_material compile_material(const material& m) {
     const std::type_info& type = typeid(m);
     if (type == typeid(lambertian)) {
         auto& l = static_cast<const lambertian&>(m);
         check_color(l.albedo(), "lambertian albedo");
-        d.kind = material_kind::lambertian;
-        d.albedo = vec3f(l.albedo());
-    } else if (type == typeid(metal)) {
+        return l.compiled();
+    }
+    if (type == typeid(metal)) {
         auto& mt = static_cast<const metal&>(m);
         check_color(mt.albedo(), "metal albedo");
         if (!(mt.fuzz() >= 0)) throw scene_error("metal fuzz must be non-negative, got " + std::to_string(mt.fuzz()));
-        d.kind = material_kind::metal;
-        d.albedo = vec3f(mt.albedo());
-        d.fuzz = static_cast<float>(mt.fuzz());
-    } else if (type == typeid(dielectric)) {
+        return mt.compiled();
+    }
+    if (type == typeid(dielectric)) {
         auto& g = static_cast<const dielectric&>(m);
-        double ri = g.refraction_index();
-        if (!(std::isfinite(ri) && ri > 0))
-            throw scene_error("dielectric refraction index must be positive and finite, got " + std::to_string(ri));
-        d.kind = material_kind::dielectric;
-        d.albedo = {1, 1, 1};
-        d.refraction_index = static_cast<float>(ri);
-        if (g.exact_fresnel()) {
-            check_color(g.absorption(), "dielectric absorption");
-            d.kind = material_kind::exact_dielectric;
-            d.absorption = vec3f(g.absorption());
-        }
-    } else if (type == typeid(conductor)) {
+        detail::check_refraction_index(g.refraction_index(), "dielectric refraction index");
+        if (g.exact_fresnel()) check_color(g.absorption(), "dielectric absorption");
+        return g.compiled();
+    }
+    if (type == typeid(conductor)) {
         auto& c = static_cast<const conductor&>(m);
         check_color(c.tint(), "conductor tint");
         check_color(c.n(), "conductor n");
         check_color(c.k(), "conductor k");
         if (!(c.n().x() > 0 && c.n().y() > 0 && c.n().z() > 0))
             throw scene_error("conductor n must be positive, got " + point_text(c.n()));
-        d.kind = material_kind::conductor;
-        d.albedo = vec3f(c.tint());
-        d.eta = vec3f(c.n());
-        d.k = vec3f(c.k());
-    } else {
-        d.kind = material_kind::custom;
-        d.custom = &m;
+        return c.compiled();
     }
-    return d;
+    if (type == typeid(whitted_material)) {
+        auto& w = static_cast<const whitted_material&>(m);
+        detail::check_whitted_material(w);
+        return w.compiled();
+    }
+    compiled_material user;
+    user.kind = material_kind::user;
+    user.source = &m;
+    return user;
 }
 
 } // namespace rt

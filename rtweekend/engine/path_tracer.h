@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 namespace rt {
 
@@ -38,35 +39,28 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
                         uint64_t& rays) {
     vec3f throughput{1, 1, 1};
     surface_hit hit;
+    std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
     for (int depth = 0; depth < max_depth; ++depth) {
         ++rays;
         if (!scene.intersect(r, hit)) return throughput * env.eval(r.dir);
 
-        // A user-written hittable reports its own material; a built-in sphere indexes the table.
-        material_desc custom_desc;
-        const material_desc* m;
-        if (hit.user_shape) {
-            custom_desc = compile_reported_material(hit.user_record);
-            m = &custom_desc;
-        } else {
-            m = &scene.materials[hit.material];
-        }
+        if (hit.user_shape) reported = compile_reported_material(hit.user_record);
+        const compiled_material& m = hit.user_shape ? *reported : scene.materials[hit.material];
         // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
         // inside it (directions are unit).
-        if (m->kind == material_kind::exact_dielectric && !hit.front_face)
-            throughput *= beer_transmittance(m->absorption, hit.t);
+        if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
 
-        vec3f dir, attenuation;
-        bool scattered = m->kind == material_kind::custom
-                             ? scatter_user_material(scene, *m->custom, r, hit, dir, attenuation)
-                             : scatter_builtin(*m, r.dir, hit.normal, hit.front_face, rng, dir, attenuation);
+        material_sample s;
+        const bool scattered = m.kind == material_kind::user
+                                   ? sample_user_material(scene, *m.source, r, hit, s)
+                                   : m.sample(-r.dir, shading_point{hit.normal, hit.front_face}, rng, s);
         if (!scattered) return {0, 0, 0};
-        throughput *= attenuation;
+        throughput *= s.value;
 
         // Leave the surface on the side the new direction points to.
-        vec3f side = dot(dir, hit.normal) >= 0 ? hit.normal : -hit.normal;
+        vec3f side = dot(s.wi, hit.normal) >= 0 ? hit.normal : -hit.normal;
         r.origin = offset_ray_origin(hit.p, side) + hit.offset * side;
-        r.dir = dir;
+        r.dir = s.wi;
         r.tmin = 0;
         r.tmax = std::numeric_limits<float>::infinity();
     }

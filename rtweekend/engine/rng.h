@@ -68,7 +68,7 @@ inline constexpr pcg32 sample_rng(uint64_t seed, uint64_t pixel, uint64_t sample
 
 namespace detail {
 // The generator of the camera sample this thread is computing, or null outside a render. The
-// renderer installs it only around calls into user-written code (see render.h).
+// renderer installs it only around calls into user-written code (see path_tracer.h).
 inline pcg32*& thread_sample_rng() {
     thread_local pcg32* current = nullptr;
     return current;

@@ -4,6 +4,7 @@
 // feed it from any generator.
 
 #include "../constants.h"
+#include "force_inline.h"
 #include "vec3f.h"
 
 #include <cmath>

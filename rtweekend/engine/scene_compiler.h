@@ -44,7 +44,7 @@ namespace rt {
 compiled_scene compile_scene(const hittable& world, const point3& origin);
 
 // The table entry for the material a user's hittable reported at a hit (compiled on the spot).
-material_desc compile_reported_material(const hit_record& rec);
+compiled_material compile_reported_material(const hit_record& rec);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -135,8 +135,8 @@ class scene_compiler {
     uint32_t material_index(const material* m) {
         auto found = index_.find(m);
         if (found != index_.end()) return found->second;
-        material_desc d = compile_material(*m);
-        if (d.kind == material_kind::custom) out_.has_user_materials = true;
+        compiled_material d = compile_material(*m);
+        if (d.kind == material_kind::user) out_.has_user_materials = true;
         auto index = static_cast<uint32_t>(out_.materials.size());
         out_.materials.push_back(d);
         index_.emplace(m, index);
@@ -271,7 +271,7 @@ inline compiled_scene compile_scene(const hittable& world, const point3& origin)
     return scene;
 }
 
-inline material_desc compile_reported_material(const hit_record& rec) {
+inline compiled_material compile_reported_material(const hit_record& rec) {
     if (!rec.mat) throw scene_error("a user-written hittable reported a hit without a material");
     return compile_material(*rec.mat);
 }

@@ -5,6 +5,7 @@
 // The test is the numerically stable one of sphere.h (Haines et al., Ray Tracing Gems ch. 7):
 // the discriminant from the centre's distance to the ray's line, the near root from c / q.
 
+#include "force_inline.h"
 #include "leaf_query.h"
 #include "simd.h"
 #include "surface_hit.h"
@@ -60,7 +61,7 @@ struct sphere_set {
 };
 
 template <query Q>
-bool sphere_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const {
+RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const {
     constexpr size_t W = floatv::width;
     const floatv lanes = lane_index(), tmin(ray.tmin), zero(0.0f);
     const floatv ox(ray.origin.x), oy(ray.origin.y), oz(ray.origin.z);

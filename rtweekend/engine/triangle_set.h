@@ -8,6 +8,7 @@
 
 #include "../triangle.h"
 #include "../vec3.h"
+#include "force_inline.h"
 #include "leaf_query.h"
 #include "simd.h"
 #include "surface_hit.h"
@@ -79,7 +80,7 @@ struct triangle_set {
 };
 
 template <query Q>
-bool triangle_set::intersect_leaf(const ray3f& ray, const triangle_ray& tr, uint32_t first, uint32_t n, float& t_best,
+RTWEEKEND_FORCE_INLINE bool triangle_set::intersect_leaf(const ray3f& ray, const triangle_ray& tr, uint32_t first, uint32_t n, float& t_best,
                                   hit_ref& best) const {
     constexpr size_t W = floatv::width;
     const floatv lanes = lane_index(), tmin(ray.tmin), zero(0.0f);

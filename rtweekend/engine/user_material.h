@@ -3,9 +3,14 @@
 // interface, material::scatter(r_in, rec, attenuation, scattered), in double precision and world
 // coordinates. User code may call random_double(); scoped_sample_rng makes that draw from the
 // current sample's generator, so the image stays the same at any thread count.
+//
+// In the material contract's terms (bsdf.h) such a material has no density anyone knows: its
+// samples are reported as delta lobes (reflection or transmission by the side wi leaves on),
+// with pdf 1, and its eval and pdf are 0, so light sampling never relies on them.
 
 #include "../hittable.h"
 #include "../material.h"
+#include "bsdf.h"
 #include "compiled_scene.h"
 #include "vec3f.h"
 
@@ -15,8 +20,8 @@ namespace rt {
 
 // Scatters the ray r (relative to the scene origin) at `hit` through the virtual scatter() of
 // the user's material m. False when the material absorbs it.
-bool scatter_user_material(const compiled_scene& scene, const material& m, const ray3f& r, const surface_hit& hit,
-                           vec3f& dir, vec3f& attenuation);
+bool sample_user_material(const compiled_scene& scene, const material& m, const ray3f& r, const surface_hit& hit,
+                          material_sample& s);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -27,8 +32,8 @@ inline std::shared_ptr<material> borrow(const material* m) {
 }
 } // namespace detail
 
-inline bool scatter_user_material(const compiled_scene& scene, const material& m, const ray3f& r,
-                                  const surface_hit& hit, vec3f& dir, vec3f& attenuation) {
+inline bool sample_user_material(const compiled_scene& scene, const material& m, const ray3f& r,
+                                 const surface_hit& hit, material_sample& s) {
     hit_record rec;
     if (hit.user_shape) {
         rec = hit.user_record; // a user's hittable filled it in world coordinates
@@ -43,8 +48,10 @@ inline bool scatter_user_material(const compiled_scene& scene, const material& m
     color att;
     ray scattered;
     if (!m.scatter(r_in, rec, att, scattered)) return false;
-    dir = normalize(vec3f(scattered.direction()));
-    attenuation = vec3f(att);
+    s.wi = normalize(vec3f(scattered.direction()));
+    s.value = vec3f(att);
+    s.pdf = 1;
+    s.sampled = dot(s.wi, hit.normal) >= 0 ? delta_reflection : delta_transmission;
     return true;
 }
 

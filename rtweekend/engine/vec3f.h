@@ -1,6 +1,6 @@
 #pragma once
 // vec3f: the renderer's single-precision vector. The teaching surface describes scenes with the
-// book's double vec3; the compiled scene (scene.h) and the render loop work in float.
+// book's double vec3; the compiled scene (compiled_scene.h) and the render loop work in float.
 
 #include "../vec3.h"
 

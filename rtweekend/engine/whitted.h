@@ -4,27 +4,42 @@
 // pixel, point and ambient lights, Lambert diffuse plus Blinn-Phong specular, shadow rays, and
 // recursion through mirrors, conductors and dielectrics up to max_recursion_depth bounces.
 //
-//   whitted_scene s = load_xml_scene("scene.xml");           // xml_scene.h
+//   whitted_scene s = load_xml_scene("scene.xml");           // io/xml_scene.h
 //   whitted_render r = render_whitted(s, 0);                   // camera 0
 //   write_whitted_image("out.png", r.img);                     // clamp to 0..255, no gamma
 //
-// It traces the same compiled scene (BVH, float SIMD tests) as the path tracer. The image holds
-// radiance in the course's units (255 is white), unclamped; encode_whitted_8bit clamps each
-// channel to [0, 255] and truncates, as the course's reference images do.
+// It traces the same compiled scene (BVH, float SIMD tests) as the path tracer and asks the same
+// material contract (bsdf.h) for what the surfaces do:
+//   - a point light of intensity I at distance d, seen along l, adds (I / d^2) pi eval(wo, l):
+//     the course writes the diffuse term as kd (I / d^2) cos, which is pi times the radiance a
+//     Lambertian of albedo kd reflects (eval is kd cos / pi), so its intensities are pi times
+//     radiometric ones;
+//   - the course's ambient term (ka times the ambient light) and its Blinn-Phong specular term
+//     (ks (n.h)^p I / d^2) describe point-light shading, not a BSDF: they come from the
+//     whitted_material itself (whitted_terms below) and other materials have none;
+//   - mirrors, conductors and glass are the contract's delta lobes, sampled one lobe at a time
+//     (reflection, then transmission) and followed while bounces remain; other lobes (a fuzzy
+//     metal's) light the point through eval only;
+//   - inside absorbing glass the radiance of a ray is attenuated over the distance to the next
+//     surface by the material's transmittance (Beer's law).
+// The image holds radiance in the course's units (255 is white), unclamped; encode_whitted_8bit
+// clamps each channel to [0, 255] and truncates, as the course's reference images do.
 
-#include "fresnel.h"
 #include "../io/image_write.h"
+#include "../whitted_material.h"
+#include "../whitted_scene.h"
+#include "bsdf.h"
+#include "compiled_scene.h"
 #include "ray_offset.h"
 #include "render_settings.h"
-#include "scheduler.h"
-#include "compiled_scene.h"
+#include "rng.h"
 #include "scene_compiler.h"
+#include "scheduler.h"
 #include "validate.h"
-#include "../whitted_scene.h"
 
 #include <chrono>
 #include <cmath>
-#include <memory>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,18 +56,15 @@ struct whitted_render {
     render_stats stats; // rays counts camera, reflected, refracted and shadow rays
 };
 
-namespace detail {
-// A material as the Whitted renderer's inner loop reads it: whitted_material in float, with the
-// conductor's complex index per channel (the path tracer's conductors have one per channel).
-struct whitted_shading {
-    whitted_material::kind_t kind = whitted_material::kind_t::plain;
-    vec3f ambient, diffuse, specular, mirror, absorption;
+// The course's point-light shading terms of a material that are not part of its BSDF: ambient
+// reflectance and Blinn-Phong specular colour and exponent (zero for anything but a
+// whitted_material).
+struct whitted_terms {
+    vec3f ambient{0, 0, 0}, specular{0, 0, 0};
     float phong_exponent = 1;
-    float refraction_index = 1;
-    vec3f eta{1, 1, 1}, k{0, 0, 0}; // conductor
-    bool absorbs = false;           // any absorption coefficient above zero
+
+    static whitted_terms of(const compiled_material& m);
 };
-} // namespace detail
 
 // Compiles the scene once, then renders any of its cameras.
 class whitted_renderer {
@@ -62,10 +74,11 @@ class whitted_renderer {
     const compiled_scene& compiled() const { return compiled_; }
 
   private:
-    using shading_material = detail::whitted_shading;
-    vec3f trace(const ray3f& r, int depth, bool primary, const shading_material* medium, uint64_t& rays) const;
-    vec3f radiance(const surface_hit& hit, const ray3f& r, int depth, uint64_t& rays) const;
-    vec3f shade(const surface_hit& hit, const ray3f& r, const shading_material& m, uint64_t& rays) const;
+    vec3f trace(const ray3f& r, int depth, bool primary, const compiled_material* medium, pcg32& rng,
+                uint64_t& rays) const;
+    vec3f radiance(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays) const;
+    vec3f shade(const surface_hit& hit, const ray3f& r, const compiled_material& m, const whitted_terms& terms,
+                uint64_t& rays) const;
     ray3f spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const;
 
     // What rendering needs of the scene besides its geometry, copied: the renderer does not
@@ -76,7 +89,7 @@ class whitted_renderer {
     int max_recursion_depth_ = 0;
     whitted_options options_;
     compiled_scene compiled_;
-    std::vector<shading_material> materials_; // by compiled material index
+    std::vector<whitted_terms> terms_; // by compiled material index
     struct light_f {
         vec3f position; // relative to the compiled scene's origin
         vec3f intensity;
@@ -95,72 +108,18 @@ void write_whitted_image(const std::string& path, const image& img);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
-namespace detail {
-
-inline whitted_shading make_whitted_shading(const whitted_material& w) {
-    check_color(w.ambient, "ambient reflectance");
-    check_color(w.diffuse, "diffuse reflectance");
-    check_color(w.specular, "specular reflectance");
-    check_color(w.mirror, "mirror reflectance");
-    check_color(w.absorption_coefficient, "absorption coefficient");
-    if (!(std::isfinite(w.phong_exponent) && w.phong_exponent >= 0))
-        throw scene_error("Phong exponent must be finite and non-negative, got " + std::to_string(w.phong_exponent));
-    if (!(std::isfinite(w.refraction_index) && w.refraction_index > 0))
-        throw scene_error("refraction index must be positive and finite, got " + std::to_string(w.refraction_index));
-    if (!(std::isfinite(w.absorption_index) && w.absorption_index >= 0))
-        throw scene_error("absorption index must be finite and non-negative, got " + std::to_string(w.absorption_index));
-    whitted_shading m;
-    m.kind = w.kind;
-    // CENG477's files have no material types: a material with a MirrorReflectance is a mirror.
-    if (m.kind == whitted_material::kind_t::plain && (w.mirror.x() > 0 || w.mirror.y() > 0 || w.mirror.z() > 0))
-        m.kind = whitted_material::kind_t::mirror;
-    m.ambient = vec3f(w.ambient);
-    m.diffuse = vec3f(w.diffuse);
-    m.specular = vec3f(w.specular);
-    m.mirror = vec3f(w.mirror);
-    m.absorption = vec3f(w.absorption_coefficient);
-    m.phong_exponent = float(w.phong_exponent);
-    m.refraction_index = float(w.refraction_index);
-    m.eta = vec3f(m.refraction_index, m.refraction_index, m.refraction_index);
-    float k = float(w.absorption_index);
-    m.k = vec3f(k, k, k);
-    m.absorbs = m.absorption.x > 0 || m.absorption.y > 0 || m.absorption.z > 0;
-    return m;
-}
-
-// The Whitted material of an entry of the compiled scene's table: a whitted_surface's own, or the
-// closest equivalent of a built-in path-tracer material, so that any scene can be rendered.
-inline whitted_shading make_whitted_shading(const material_desc& d) {
-    whitted_shading m;
-    switch (d.kind) {
-    case material_kind::lambertian: m.diffuse = d.albedo; break;
-    case material_kind::metal:
-        m.kind = whitted_material::kind_t::mirror;
-        m.mirror = d.albedo;
-        break;
-    case material_kind::dielectric:
-    case material_kind::exact_dielectric:
-        m.kind = whitted_material::kind_t::dielectric;
-        m.refraction_index = d.refraction_index;
-        m.absorption = d.kind == material_kind::exact_dielectric ? d.absorption : vec3f{0, 0, 0};
-        m.absorbs = m.absorption.x > 0 || m.absorption.y > 0 || m.absorption.z > 0;
-        break;
-    case material_kind::conductor:
-        m.kind = whitted_material::kind_t::conductor;
-        m.mirror = d.albedo;
-        m.eta = d.eta;
-        m.k = d.k;
-        break;
-    case material_kind::custom:
-        if (auto* s = dynamic_cast<const whitted_surface*>(d.custom)) return make_whitted_shading(s->params());
-        throw scene_error("the Whitted renderer cannot shade a user-defined material: use whitted_surface");
+inline whitted_terms whitted_terms::of(const compiled_material& m) {
+    if (m.kind == material_kind::user)
+        throw scene_error("the Whitted integrator cannot shade a user-written material (it has only scatter()): "
+                          "use whitted_material or a built-in material");
+    whitted_terms t;
+    if (auto* w = dynamic_cast<const whitted_material*>(m.source)) {
+        t.ambient = vec3f(w->ambient);
+        t.specular = vec3f(w->specular);
+        t.phong_exponent = static_cast<float>(w->phong_exponent);
     }
-    return m;
+    return t;
 }
-
-inline vec3f exp_neg(const vec3f& v) { return {std::exp(-v.x), std::exp(-v.y), std::exp(-v.z)}; }
-
-} // namespace detail
 
 inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whitted_options& options)
     : cameras_(scene.cameras), options_(options),
@@ -174,15 +133,14 @@ inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whit
     ambient_light_ = vec3f(scene.ambient_light);
     shadow_ray_epsilon_ = float(scene.shadow_ray_epsilon);
     max_recursion_depth_ = scene.max_recursion_depth;
-    for (const material_desc& d : compiled_.materials) materials_.push_back(detail::make_whitted_shading(d));
+    for (const compiled_material& m : compiled_.materials) terms_.push_back(whitted_terms::of(m));
     for (const point_light& l : scene.lights) {
         if (!finite3(l.position)) throw scene_error("point light position must be finite");
         check_color(l.intensity, "point light intensity");
         lights_.push_back({vec3f(l.position - compiled_.origin), vec3f(l.intensity)});
     }
     if (options_.cull_back_faces)
-        compiled_.set_back_face_culling(
-            [&](uint32_t m) { return materials_[m].kind != whitted_material::kind_t::dielectric; });
+        compiled_.set_back_face_culling([&](uint32_t m) { return !compiled_.materials[m].transmits(); });
 }
 
 // A secondary ray from the hit point, offset by the shadow-ray epsilon (and the float error of
@@ -196,12 +154,14 @@ inline ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side, 
     return r;
 }
 
-// Ambient, plus diffuse and Blinn-Phong specular from every point light the point sees.
-inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, const shading_material& m,
-                                     uint64_t& rays) const {
-    vec3f L = m.ambient * ambient_light_;
+// Ambient, plus what every point light the point sees adds: the material's eval towards the
+// light and the course's Blinn-Phong specular term.
+inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, const compiled_material& m,
+                                     const whitted_terms& terms, uint64_t& rays) const {
+    vec3f L = terms.ambient * ambient_light_;
     if (lights_.empty()) return L;
     const vec3f n = hit.shading_normal, v = -r.dir;
+    const shading_point sp{n, hit.front_face};
     const ray3f base = spawn(hit, hit.normal, r.dir); // origin on the side the ray came from
     for (const light_f& light : lights_) {
         vec3f to_light = light.position - hit.p;
@@ -216,66 +176,56 @@ inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, con
         ++rays;
         if (compiled_.occluded(shadow)) continue;
         vec3f E = light.intensity / d2; // irradiance at distance d: I / d^2
-        float diffuse = std::fmax(0.0f, dot(n, l));
         vec3f h = normalize(l + v);
-        float specular = std::pow(std::fmax(0.0f, dot(n, h)), m.phong_exponent);
-        L += E * (diffuse * m.diffuse + specular * m.specular);
+        float specular = std::pow(std::fmax(0.0f, dot(n, h)), terms.phong_exponent);
+        L += E * (pi_f * m.eval(v, l, sp) + specular * terms.specular);
     }
     return L;
 }
 
-// The radiance arriving along r. `medium` is the absorbing dielectric the ray travels inside,
-// if any: its radiance is then attenuated over the distance to the next surface, exp(-c t)
-// (Beer's law).
-inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, const shading_material* medium,
-                                     uint64_t& rays) const {
+// The radiance arriving along r. `medium` is the absorbing material the ray travels inside, if
+// any: the radiance is then attenuated over the distance to the next surface.
+inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, const compiled_material* medium,
+                                     pcg32& rng, uint64_t& rays) const {
     ++rays;
     surface_hit hit;
     bool found = options_.cull_back_faces ? compiled_.intersect_culling_back_faces(r, hit) : compiled_.intersect(r, hit);
     if (!found) return primary ? background_ : vec3f{0, 0, 0};
-    const vec3f L = radiance(hit, r, depth, rays);
-    return medium ? detail::exp_neg(hit.t * medium->absorption) * L : L;
+    const vec3f L = radiance(hit, r, depth, rng, rays);
+    return medium ? medium->transmittance(hit.t) * L : L;
 }
 
-// What leaves the hit point towards the ray's origin: local shading, then the mirror,
-// conductor or dielectric part while bounces remain.
-inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, uint64_t& rays) const {
+// What leaves the hit point towards the ray's origin: local shading, then the delta lobes (mirror,
+// conductor, glass) while bounces remain.
+inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng,
+                                        uint64_t& rays) const {
     // A user-written hittable reports its own material; built-in shapes index the table.
-    shading_material custom;
-    if (hit.user_shape) custom = detail::make_whitted_shading(compile_reported_material(hit.user_record));
-    const shading_material& m = hit.user_shape ? custom : materials_[hit.material];
-    vec3f L = shade(hit, r, m, rays);
-    if (depth >= max_recursion_depth_ || m.kind == whitted_material::kind_t::plain) return L;
-
-    const vec3f n = hit.shading_normal;
-    const float cos_i = std::fmin(1.0f, std::fmax(0.0f, -dot(r.dir, n)));
-    const ray3f reflected = spawn(hit, hit.normal, normalize(r.dir + 2.0f * cos_i * n));
-
-    switch (m.kind) {
-    case whitted_material::kind_t::mirror: L += m.mirror * trace(reflected, depth + 1, false, nullptr, rays); break;
-    case whitted_material::kind_t::conductor: {
-        vec3f fr{fresnel_conductor_f(cos_i, m.eta.x, m.k.x), fresnel_conductor_f(cos_i, m.eta.y, m.k.y),
-                 fresnel_conductor_f(cos_i, m.eta.z, m.k.z)};
-        L += fr * m.mirror * trace(reflected, depth + 1, false, nullptr, rays);
-        break;
+    compiled_material reported;
+    whitted_terms reported_terms;
+    if (hit.user_shape) {
+        reported = compile_reported_material(hit.user_record);
+        reported_terms = whitted_terms::of(reported);
     }
-    case whitted_material::kind_t::dielectric: {
-        // Entering through the front face the index ratio is n / 1; leaving, 1 / n. The
-        // reflected ray stays on the side it came from; the refracted one crosses over.
-        const float eta = hit.front_face ? m.refraction_index : 1.0f / m.refraction_index;
-        const float fr = fresnel_dielectric_f(cos_i, eta);
-        const shading_material* inside = m.absorbs ? &m : nullptr;
-        L += fr * trace(reflected, depth + 1, false, hit.front_face ? nullptr : inside, rays);
-        if (fr < 1.0f) {
-            // Snell's law in vector form (d and n unit, n facing d): t = d / eta + (cos_i / eta - cos_t) n.
-            float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
-            float cos_t = std::sqrt(std::fmax(0.0f, 1.0f - sin2_t));
-            ray3f refracted = spawn(hit, -hit.normal, normalize(r.dir / eta + (cos_i / eta - cos_t) * n));
-            L += (1.0f - fr) * trace(refracted, depth + 1, false, hit.front_face ? inside : nullptr, rays);
-        }
-        break;
-    }
-    case whitted_material::kind_t::plain: break;
+    const compiled_material& m = hit.user_shape ? reported : compiled_.materials[hit.material];
+    const whitted_terms& terms = hit.user_shape ? reported_terms : terms_[hit.material];
+    vec3f L = shade(hit, r, m, terms, rays);
+    if (depth >= max_recursion_depth_) return L;
+
+    // Where a smooth normal faces away from the viewer (at a silhouette), the mirror and refraction
+    // directions are taken about the geometric normal instead.
+    const vec3f wo = -r.dir;
+    const vec3f n = dot(wo, hit.shading_normal) > 0 ? hit.shading_normal : hit.normal;
+    const shading_point sp{n, hit.front_face};
+    for (lobe which : {delta_reflection, delta_transmission}) {
+        material_sample s;
+        if (!m.sample(wo, sp, rng, s, which) || !s.is_delta()) continue;
+        // The reflected ray stays on the side it came from; the refracted one crosses over. It
+        // travels inside the object when it enters through the front or stays in at the back.
+        const bool transmitted = s.sampled == delta_transmission;
+        const bool inside = hit.front_face == transmitted;
+        const compiled_material* next_medium = inside && m.absorbs_inside() ? &m : nullptr;
+        const ray3f next = spawn(hit, transmitted ? -hit.normal : hit.normal, s.wi);
+        L += s.value * trace(next, depth + 1, false, next_medium, rng, rays);
     }
     return L;
 }
@@ -310,14 +260,14 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     settings.quiet = options_.quiet;
     render_result out = render_samples(
         c.width, c.height, settings,
-        [&](int x, int y, int, pcg32&, uint64_t& rays) {
+        [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
             vec3 dir = corner + (x + 0.5) * du + (y + 0.5) * dv;
             ray3f r;
             r.origin = eye;
             r.dir = vec3f(unit_vector(dir));
             r.tmin = 0;
             r.tmax = std::numeric_limits<float>::infinity();
-            return trace(r, 0, true, nullptr, rays);
+            return trace(r, 0, true, nullptr, rng, rays); // delta lobes draw no random numbers
         },
         start);
     return {std::move(out.img), out.stats};

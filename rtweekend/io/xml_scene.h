@@ -16,7 +16,7 @@
 //     AmbientReflectance, DiffuseReflectance, SpecularReflectance, PhongExponent,
 //     MirrorReflectance, RefractionIndex (required by conductor and dielectric), AbsorptionIndex,
 //     AbsorptionCoefficient; each optional, defaulting as whitted_material does. One shared
-//     whitted_surface per material;
+//     whitted_material per material;
 //   <VertexData>: x y z triples;
 //   <Objects>: <Triangle> (Indices, Material): the single triangles of one material become one
 //     triangle_mesh; <Mesh shadingMode="smooth|flat"> (Material, <Faces vertexOffset="N"
@@ -49,6 +49,7 @@
 #include "../scene_error.h"
 #include "../sphere.h"
 #include "../vec3.h"
+#include "../whitted_material.h"
 #include "../whitted_scene.h"
 #include "file.h"
 #include "ply.h"
@@ -149,7 +150,7 @@ class xml_scene_reader {
     }
     static std::string tag(node n) { return "<" + std::string(n.name()) + ">"; }
     // <Name id="N">, or <Name> without an id.
-    static std::string describe(node n) {
+    static std::string element_name(node n) {
         pugi::xml_attribute id = n.attribute("id");
         return id ? "<" + std::string(n.name()) + " id=\"" + id.value() + "\">" : tag(n);
     }
@@ -187,10 +188,10 @@ class xml_scene_reader {
     node child(node parent, const char* name, bool required) const {
         node found;
         for (node c : parent.children(name)) {
-            if (found) fail(c, describe(parent), "<" + std::string(name) + "> appears twice");
+            if (found) fail(c, element_name(parent), "<" + std::string(name) + "> appears twice");
             found = c;
         }
-        if (!found && required) fail(parent, describe(parent), "missing <" + std::string(name) + ">");
+        if (!found && required) fail(parent, element_name(parent), "missing <" + std::string(name) + ">");
         return found;
     }
     // The character data of an element: its text pieces (split by comments) joined by spaces.
@@ -289,7 +290,7 @@ class xml_scene_reader {
         long long i = 0;
         auto r = std::from_chars(b, e, i);
         if (b == e || r.ec != std::errc() || r.ptr != e)
-            fail(el, describe(el), "attribute " + std::string(name) + "=\"" + a.value() + "\" is not a whole number");
+            fail(el, element_name(el), "attribute " + std::string(name) + "=\"" + a.value() + "\" is not a whole number");
         return i;
     }
 
@@ -328,13 +329,14 @@ class xml_scene_reader {
     void read_materials(node root) {
         for (node section : root.children("Materials"))
             for (node m : section.children("Material")) {
-                const std::string owner = describe(m);
+                const std::string owner = element_name(m);
                 if (!m.attribute("id")) fail(m, owner, "missing attribute id");
                 long long id = attribute_integer(m, "id", 0);
                 if (materials_.count(id))
                     fail(m, owner, "material id " + std::to_string(id) + " is defined twice (first on line " +
                                        std::to_string(material_lines_[id]) + ")");
-                whitted_material p;
+                auto material = std::make_shared<whitted_material>();
+                whitted_material& p = *material;
                 std::string type = lower(trim(m.attribute("type").value()));
                 using kind = whitted_material::kind_t;
                 if (type.empty()) p.kind = kind::plain;
@@ -353,7 +355,7 @@ class xml_scene_reader {
                 if (node n = child(m, "RefractionIndex", needs_index)) p.refraction_index = bounded(n, owner, 0, true);
                 if (node n = child(m, "AbsorptionIndex", false)) p.absorption_index = bounded(n, owner, 0, false);
                 if (node n = child(m, "AbsorptionCoefficient", false)) p.absorption_coefficient = colour(n, owner);
-                materials_[id] = std::make_shared<whitted_surface>(p);
+                materials_[id] = material;
                 material_lines_[id] = line_at(m.offset_debug());
             }
     }
@@ -361,7 +363,7 @@ class xml_scene_reader {
     void read_cameras(node root, whitted_scene& scene) {
         for (node section : root.children("Cameras"))
             for (node c : section.children("Camera")) {
-                const std::string owner = describe(c);
+                const std::string owner = element_name(c);
                 view_camera cam;
                 std::string type = lower(trim(c.attribute("type").value()));
                 if (!type.empty() && type != "lookat")
@@ -424,7 +426,7 @@ class xml_scene_reader {
                 scene.ambient_light = colour(a, "<Lights>");
             }
             for (node l : section.children("PointLight")) {
-                const std::string owner = describe(l);
+                const std::string owner = element_name(l);
                 point_light light;
                 light.position = triple(child(l, "Position", true), owner);
                 light.intensity = colour(child(l, "Intensity", true), owner);
@@ -433,7 +435,7 @@ class xml_scene_reader {
         }
     }
 
-    std::shared_ptr<whitted_surface> material_of(node object, const std::string& owner) const {
+    std::shared_ptr<whitted_material> material_of(node object, const std::string& owner) const {
         node m = child(object, "Material", true);
         long long id = integer(m, owner);
         auto it = materials_.find(id);
@@ -461,12 +463,12 @@ class xml_scene_reader {
     }
 
     void read_objects(node root, whitted_scene& scene) {
-        std::map<const whitted_surface*, std::shared_ptr<triangle_mesh>> single; // Triangles by material
+        std::map<const whitted_material*, std::shared_ptr<triangle_mesh>> single; // Triangles by material
         std::vector<uint32_t> remap(vertices_.size(), triangle_mesh::no_index);
         for (node section : root.children("Objects"))
             for (node o : section.children()) {
                 if (o.type() != pugi::node_element) continue;
-                const std::string name = o.name(), owner = describe(o);
+                const std::string name = o.name(), owner = element_name(o);
                 if (name == "Triangle") {
                     auto mat = material_of(o, owner);
                     node idx = child(o, "Indices", true);
@@ -568,7 +570,7 @@ class xml_scene_reader {
     pugi::xml_document doc_;
     bool zero_based_ = false;
     std::vector<point3> vertices_;
-    std::map<long long, std::shared_ptr<whitted_surface>> materials_;
+    std::map<long long, std::shared_ptr<whitted_material>> materials_;
     std::map<long long, size_t> material_lines_;
 };
 

@@ -1,0 +1,88 @@
+#pragma once
+// whitted_material: a material of the CENG795 / CENG477 course scenes (io/xml_scene.h reads them):
+// Blinn-Phong shading (ambient, diffuse and specular reflectance with a Phong exponent) plus, by
+// kind, a perfect mirror, a conductor (exact Fresnel from n and k, tinted by `mirror`) or a
+// dielectric (exact Fresnel, refraction, Beer's law absorption inside).
+//
+//   auto red = make_shared<whitted_material>();
+//   red->diffuse = color(0.8, 0.1, 0.1);
+//   red->specular = color(1, 1, 1);
+//   red->phong_exponent = 50;
+//
+// In the renderer's material contract (engine/bsdf.h) it is a Lambertian base of albedo `diffuse`
+// under its mirror, conductor or dielectric lobe. The Whitted integrator (engine/whitted.h) adds
+// the course's ambient and Blinn-Phong specular terms, which describe point-light shading rather
+// than a BSDF; the path tracer has no use for them (it sees the base and the lobe).
+//
+// Colours here are in the course's units: 0..255 per channel on output, no gamma.
+
+#include "color.h"
+#include "engine/bsdf.h"
+#include "engine/vec3f.h"
+#include "material.h"
+
+namespace rt {
+
+class whitted_material : public material {
+  public:
+    enum class kind_t { plain, mirror, conductor, dielectric };
+    kind_t kind = kind_t::plain;
+    color ambient{0, 0, 0};   // ka: multiplies the ambient light
+    color diffuse{0, 0, 0};   // kd
+    color specular{0, 0, 0};  // ks
+    double phong_exponent = 1;
+    color mirror{0, 0, 0};    // MirrorReflectance: mirror and conductor
+    double refraction_index = 1;  // conductor and dielectric
+    double absorption_index = 0;  // k: conductor
+    color absorption_coefficient{0, 0, 0}; // c per unit length: dielectric (Beer's law)
+
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    // The kind the renderer treats it as: CENG477's files give materials no type, and a material
+    // with a MirrorReflectance is a mirror there.
+    kind_t effective_kind() const {
+        if (kind == kind_t::plain && (mirror.x() > 0 || mirror.y() > 0 || mirror.z() > 0)) return kind_t::mirror;
+        return kind;
+    }
+
+    // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
+    compiled_material compiled() const {
+        compiled_material m;
+        const float n = static_cast<float>(refraction_index), k = static_cast<float>(absorption_index);
+        switch (effective_kind()) {
+        case kind_t::plain:
+            m.kind = material_kind::lambertian;
+            m.albedo = vec3f(diffuse);
+            break;
+        case kind_t::mirror:
+            m.kind = material_kind::metal; // fuzz 0: a perfect mirror
+            m.albedo = vec3f(mirror);
+            m.diffuse = vec3f(diffuse);
+            break;
+        case kind_t::conductor:
+            m.kind = material_kind::conductor;
+            m.albedo = vec3f(mirror);
+            m.eta = {n, n, n};
+            m.k = {k, k, k};
+            m.diffuse = vec3f(diffuse);
+            break;
+        case kind_t::dielectric:
+            m.kind = material_kind::fresnel_dielectric;
+            m.albedo = {1, 1, 1};
+            m.refraction_index = n;
+            m.absorption = vec3f(absorption_coefficient);
+            m.diffuse = vec3f(diffuse);
+            break;
+        }
+        m.source = this;
+        return m;
+    }
+};
+
+} // namespace rt
+
+#ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::whitted_material;
+#endif
