@@ -4,13 +4,14 @@
 // shared_ptr, make_shared, infinity, pi, degrees_to_radians, random_double, and every rt class
 // a book chapter introduces (unless RTWEEKEND_NO_GLOBAL_NAMES is defined).
 
-// The teaching surface, in the book's order.
+// The teaching surface: the books' headers in the books' order, then the shapes, materials and
+// scene types this library adds in the same vocabulary.
 #include "constants.h"
-#include "engine/rng.h"
 #include "vec3.h"
 #include "color.h"
 #include "ray.h"
 #include "interval.h"
+#include "aabb.h"
 #include "hittable.h"
 #include "hittable_list.h"
 #include "sphere.h"
@@ -18,25 +19,21 @@
 #include "camera.h"
 #include "triangle.h"
 #include "mesh.h"
+#include "whitted_material.h"
+#include "whitted_scene.h"
+#include "scene_error.h"
 
-// The engine underneath, and files.
-#include "engine/bsdf.h"
-#include "engine/bvh.h"
-#include "engine/fresnel.h"
-#include "engine/image.h"
+// The engine underneath (the compiled scene and its compiler, the integrators), and the file
+// formats. Not included here: io/image_read.h, measure/metrics.h and io/ray_file.h, which compile
+// stb_image's decoders or serve the measuring tools only.
+#include "engine/scene_compiler.h"
+#include "engine/path_tracer.h"
+#include "engine/whitted.h"
 #include "io/file.h"
 #include "io/image_write.h"
 #include "io/obj.h"
 #include "io/ply.h"
-#include "engine/ray_offset.h"
-#include "engine/path_tracer.h"
-#include "engine/sampling.h"
-#include "engine/compiled_scene.h"
-#include "scene_error.h"
 #include "io/scene_file.h"
-#include "engine/simd.h"
-#include "engine/vec3f.h"
-#include "engine/whitted.h"
 #include "io/xml_scene.h"
 
 #include <cmath>

@@ -11,8 +11,8 @@
 // The renderer tests triangles in float, several at a time (engine/triangle_set.h), and falls back to
 // triangle_edge_functions in double when a ray passes exactly through an edge.
 
-#include "hittable.h"
 #include "engine/simd.h"
+#include "hittable.h"
 
 #include <cmath>
 #include <memory>

@@ -11,11 +11,11 @@
 #include "../hittable.h"
 #include "camera_frame.h"
 #include "compiled_scene.h"
-#include "scene_compiler.h"
 #include "environment.h"
 #include "ray_offset.h"
 #include "render_settings.h"
 #include "rng.h"
+#include "scene_compiler.h"
 #include "scheduler.h"
 #include "user_material.h"
 

@@ -26,11 +26,11 @@
 #include "../hittable_list.h"
 #include "../material.h"
 #include "../mesh.h"
-#include "obj.h"
-#include "ply.h"
 #include "../scene_error.h"
 #include "../sphere.h"
 #include "../triangle.h"
+#include "obj.h"
+#include "ply.h"
 
 #include <cctype>
 #include <cerrno>

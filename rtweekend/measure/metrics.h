@@ -29,8 +29,8 @@
 //
 // Images of different sizes, or empty ones, throw scene_error naming both sizes.
 
-#include "../io/image_write.h"
 #include "../io/image_read.h"
+#include "../io/image_write.h"
 #include "../scene_error.h"
 
 #include <cmath>
