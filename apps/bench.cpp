@@ -30,6 +30,7 @@
 #include "app_options.h"
 #include "loop_subdivision.h"
 #include "ray_workload.h"
+#include "user_sphere.h"
 
 #include "plot_svg.h"
 
@@ -585,40 +586,6 @@ void bench_error(const bench_options& o) {
 
 // --- user shapes --------------------------------------------------------------------------------
 
-// A sphere written as a user would write it from the book (its own hit() in double precision),
-// with or without book 2's bounding_box().
-class user_sphere : public rt::hittable {
-  public:
-    user_sphere(rt::point3 c, double r, std::shared_ptr<rt::material> m, bool boxed)
-        : c_(c), r_(r), m_(std::move(m)), boxed_(boxed) {}
-    bool hit(const rt::ray& r, rt::interval t, rt::hit_record& rec) const override {
-        rt::vec3 oc = c_ - r.origin();
-        double a = r.direction().length_squared(), h = dot(r.direction(), oc);
-        double disc = h * h - a * (oc.length_squared() - r_ * r_);
-        if (disc < 0) return false;
-        double sq = std::sqrt(disc), root = (h - sq) / a;
-        if (!t.surrounds(root)) {
-            root = (h + sq) / a;
-            if (!t.surrounds(root)) return false;
-        }
-        rec.t = root;
-        rec.p = r.at(root);
-        rec.set_face_normal(r, (rec.p - c_) / r_);
-        rec.mat = m_;
-        return true;
-    }
-    rt::aabb bounding_box() const override {
-        if (!boxed_) return hittable::bounding_box(); // a book-1 class: no box of its own
-        return rt::aabb(c_ - rt::vec3(r_, r_, r_), c_ + rt::vec3(r_, r_, r_));
-    }
-
-  private:
-    rt::point3 c_;
-    double r_;
-    std::shared_ptr<rt::material> m_;
-    bool boxed_;
-};
-
 void bench_user_shapes(const bench_options& o) {
     // N spheres of radius 0.2 on a square grid of pitch 0.5 on a ground sphere, two materials, a
     // 160x90 view from above at 4 samples per pixel, depth 8.
@@ -631,7 +598,9 @@ void bench_user_shapes(const bench_options& o) {
         int side = int(std::ceil(std::sqrt(double(o.user_shapes))));
         for (int i = 0; i < o.user_shapes; ++i) {
             double x = (i % side) - side / 2.0, z = (i / side) - side / 2.0;
-            world.add(std::make_shared<user_sphere>(rt::point3(x * 0.5, 0.2, z * 0.5), 0.2, i % 3 ? red : steel, boxed));
+            world.add(std::make_shared<app::user_sphere>(rt::point3(x * 0.5, 0.2, z * 0.5), 0.2, i % 3 ? red : steel,
+                                                         boxed ? app::user_sphere::box_kind::exact
+                                                               : app::user_sphere::box_kind::none));
         }
         return world;
     };

@@ -1,14 +1,18 @@
 #pragma once
-// What several test files need: a scratch directory, a small quiet camera, bit-for-bit image
-// comparison.
+// What several test files need: a scratch directory, a small quiet camera, a checked render,
+// bit-for-bit image comparison, one material sample in the terms of an incoming ray.
 
 #include <rtweekend/camera.h>
 #include <rtweekend/engine/bsdf.h>
 #include <rtweekend/engine/image.h>
 #include <rtweekend/engine/rng.h>
 
+#include <doctest/doctest.h>
+
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +69,23 @@ inline rt::camera test_camera(int w, int h, int spp, int depth) {
     cam.quiet = true;
     cam.threads = 2;
     return cam;
+}
+
+// The number of camera samples a render with `cam` takes without adaptive sampling.
+inline uint64_t sample_count(const rt::camera& cam) {
+    return uint64_t(cam.image_width) * uint64_t(cam.height()) * uint64_t(cam.samples_per_pixel);
+}
+
+// Renders and checks what every render must satisfy: no NaN/Inf sample was dropped, and every
+// pixel is finite and non-negative.
+inline rt::render_result render_checked(const rt::camera& cam, const rt::hittable& world) {
+    rt::render_result r = rt::render(cam, world);
+    CHECK(r.stats.nonfinite_samples == 0);
+    long bad = 0;
+    for (float v : r.img.data())
+        if (!(std::isfinite(v) && v >= 0)) ++bad;
+    CHECK(bad == 0);
+    return r;
 }
 
 // Whether two images have the same size and the same bits in every float.

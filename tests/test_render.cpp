@@ -67,10 +67,6 @@ void check_uniform(const image& img, const color& expect) {
     for (int k = 0; k < 3; ++k) CHECK(sum[k] / n == doctest::Approx(expect[k]).epsilon(1e-6));
 }
 
-uint64_t sample_count(const camera& cam) {
-    return uint64_t(cam.image_width) * uint64_t(cam.height()) * uint64_t(cam.samples_per_pixel);
-}
-
 // --- user code written against the book's interfaces -------------------------------------------
 
 // An infinite plane through `point` with unit normal `normal`.
@@ -218,7 +214,7 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
 
     // Sanity of the image itself: finite, non-negative, not black, nothing dropped.
     CHECK(r1.stats.nonfinite_samples == 0);
-    CHECK(r1.stats.samples == sample_count(cam));
+    CHECK(r1.stats.samples == test::sample_count(cam));
     // Every sample traces at least the camera ray and at most max_depth rays.
     CHECK(r1.stats.rays >= r1.stats.samples);
     CHECK(r1.stats.rays <= r1.stats.samples * uint64_t(cam.max_depth));
@@ -249,7 +245,7 @@ TEST_CASE("render: empty world shows the background, one ray per sample") {
         cam.background = color(0.25, 0.5, 0.75);
         render_result r = render(cam, world);
         check_uniform(r.img, color(0.25, 0.5, 0.75));
-        CHECK(r.stats.rays == sample_count(cam)); // 20 * 12 * 3 = 720
+        CHECK(r.stats.rays == test::sample_count(cam)); // 20 * 12 * 3 = 720
         CHECK(r.stats.rays == 720);
         CHECK(r.stats.samples == 720);
         CHECK(r.stats.nonfinite_samples == 0);
@@ -288,7 +284,7 @@ TEST_CASE("render: white furnace, lambertian sphere renders its albedo exactly")
             // Exactly float(a): e.g. 0.3 renders 0.3f, the float the kernel multiplies by.
             check_uniform(r.img, color(double(float(a)), double(float(a)), double(float(a))));
             // Every camera ray hits, scatters once and escapes: 2 rays per sample.
-            CHECK(r.stats.rays == 2 * sample_count(cam)); // 2 * 20 * 12 * 8 = 3840
+            CHECK(r.stats.rays == 2 * test::sample_count(cam)); // 2 * 20 * 12 * 8 = 3840
             CHECK(r.stats.nonfinite_samples == 0);
         }
     }
@@ -318,7 +314,7 @@ TEST_CASE("render: white furnace, lambertian sphere renders its albedo exactly")
         hittable_list world = one_sphere(std::make_shared<lambertian>(color(0.5, 0.5, 0.5)));
         render_result r = render(cam, world);
         for (float v : r.img.data()) CHECK(v == 0.0f);
-        CHECK(r.stats.rays == sample_count(cam));
+        CHECK(r.stats.rays == test::sample_count(cam));
     }
 }
 
@@ -329,7 +325,7 @@ TEST_CASE("render: furnace with a mirror and a glass sphere") {
         hittable_list world = one_sphere(std::make_shared<metal>(color(0.8, 0.6, 0.4), 0.0));
         render_result r = render(cam, world);
         check_uniform(r.img, color(double(0.8f), double(0.6f), double(0.4f)));
-        CHECK(r.stats.rays == 2 * sample_count(cam));
+        CHECK(r.stats.rays == 2 * test::sample_count(cam));
     }
     // Glass: every scattering has attenuation 1, so every path that escapes carries exactly 1.
     // Inside a sphere the internal angle equals the refraction angle, below critical, so there is
@@ -343,7 +339,7 @@ TEST_CASE("render: furnace with a mirror and a glass sphere") {
         check_uniform(r.img, color(1, 1, 1));
         CHECK(r.stats.nonfinite_samples == 0);
         // At least the entry and the exit (or an outward reflection: 2 rays).
-        CHECK(r.stats.rays >= 2 * sample_count(cam));
+        CHECK(r.stats.rays >= 2 * test::sample_count(cam));
     }
 }
 
@@ -363,7 +359,7 @@ TEST_CASE("render: a user-written hittable (a plane) renders through the book in
                                           std::make_shared<lambertian>(color(0.5, 0.5, 0.5))));
         render_result r = render(cam, world);
         check_uniform(r.img, color(0.5, 0.5, 0.5));
-        CHECK(r.stats.rays == 2 * sample_count(cam));
+        CHECK(r.stats.rays == 2 * test::sample_count(cam));
         CHECK(r.stats.nonfinite_samples == 0);
     }
     SUBCASE("with a user-written material (tinted mirror)") {
@@ -372,7 +368,7 @@ TEST_CASE("render: a user-written hittable (a plane) renders through the book in
                                           std::make_shared<tinted_mirror>(color(0.9, 0.5, 0.25))));
         render_result r = render(cam, world);
         check_uniform(r.img, color(double(0.9f), 0.5, 0.25));
-        CHECK(r.stats.rays == 2 * sample_count(cam));
+        CHECK(r.stats.rays == 2 * test::sample_count(cam));
     }
     SUBCASE("far from the world origin (plane at y = 1e4, camera 5 above)") {
         camera far = cam;
@@ -383,7 +379,7 @@ TEST_CASE("render: a user-written hittable (a plane) renders through the book in
                                           std::make_shared<lambertian>(color(0.5, 0.5, 0.5))));
         render_result r = render(far, world);
         check_uniform(r.img, color(0.5, 0.5, 0.5));
-        CHECK(r.stats.rays == 2 * sample_count(far));
+        CHECK(r.stats.rays == 2 * test::sample_count(far));
     }
 }
 
@@ -393,7 +389,7 @@ TEST_CASE("render: the book's own sphere code as a user hittable (furnace)") {
     world.add(std::make_shared<book_sphere>(point3(0, 0, -2), 1, std::make_shared<lambertian>(color(0.5, 0.5, 0.5))));
     render_result r = render(cam, world);
     check_uniform(r.img, color(0.5, 0.5, 0.5));
-    CHECK(r.stats.rays == 2 * sample_count(cam));
+    CHECK(r.stats.rays == 2 * test::sample_count(cam));
 
     // User and built-in spheres together (a built-in sphere behind the user one, which scattered
     // rays can reach): the image is still bit-identical at any thread count.
@@ -409,7 +405,7 @@ TEST_CASE("render: a user-written material on a built-in sphere") {
     hittable_list world = one_sphere(std::make_shared<tinted_mirror>(color(0.9, 0.5, 0.25)));
     render_result r = render(cam, world);
     check_uniform(r.img, color(double(0.9f), 0.5, 0.25));
-    CHECK(r.stats.rays == 2 * sample_count(cam));
+    CHECK(r.stats.rays == 2 * test::sample_count(cam));
     cam.threads = 1;
     CHECK(test::same_bits(r.img, render(cam, world).img));
 }
@@ -447,7 +443,7 @@ TEST_CASE("render: a user material that calls random_double() is deterministic a
             CHECK(c.z() == c.x());
             survivors += k;
         }
-    const double N = double(sample_count(cam));
+    const double N = double(test::sample_count(cam));
     CHECK(std::fabs(survivors / N - (1 - p)) <= 5 * std::sqrt(p * (1 - p) / N));
     // Absorbed samples cost 1 ray, survivors 2.
     CHECK(double(r1.stats.rays) == N + survivors);

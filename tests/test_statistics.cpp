@@ -604,25 +604,9 @@ TEST_CASE("binomial power: glass of ior 1.6 is rejected as Schlick's glass of io
 namespace {
 
 camera furnace_cam(int w, int h, int spp, int depth, const color& B) {
-    camera cam;
-    cam.image_width = w;
-    cam.image_height = h;
-    cam.samples_per_pixel = spp;
-    cam.max_depth = depth;
+    camera cam = test::test_camera(w, h, spp, depth);
     cam.background = B;
-    cam.quiet = true;
-    cam.threads = 2;
     return cam;
-}
-
-render_result render_checked(const camera& cam, const hittable& world) {
-    render_result r = render(cam, world);
-    CHECK(r.stats.nonfinite_samples == 0);
-    return r;
-}
-
-uint64_t samples_of(const camera& cam) {
-    return uint64_t(cam.image_width) * uint64_t(cam.height()) * uint64_t(cam.samples_per_pixel);
 }
 
 long pixels_not_equal(const image& img, const color& expect) {
@@ -660,9 +644,9 @@ TEST_CASE("furnace: albedo-1 Lambertian spheres that see each other render exact
     cam.vfov = 40;
     cam.lookfrom = point3(0, 3, 4);
     cam.lookat = point3(0, -0.5, 0);
-    render_result r = render_checked(cam, world);
+    render_result r = test::render_checked(cam, world);
     CHECK(pixels_not_equal(r.img, B) == 0);
-    CHECK(r.stats.rays > 2 * samples_of(cam));
+    CHECK(r.stats.rays > 2 * test::sample_count(cam));
 }
 
 TEST_CASE("furnace: a glass sphere of ior 1.33, 1.5, 2.4 renders exactly a coloured background") {
@@ -683,7 +667,7 @@ TEST_CASE("furnace: a glass sphere of ior 1.33, 1.5, 2.4 renders exactly a colou
             cam.vfov = 30;
             cam.lookfrom = C + vec3(0.5, 1, 3);
             cam.lookat = C;
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             CHECK(pixels_not_equal(r.img, B) == 0);
         }
     }
@@ -713,7 +697,7 @@ TEST_CASE("furnace: fuzzy metal absorbs exactly the fraction the ball offset pre
         cam.lookfrom = point3(0, 0, 1.5);
         cam.lookat = point3(0, 0, 0);
         cam.seed = 3;
-        render_result r = render_checked(cam, world);
+        render_result r = test::render_checked(cam, world);
 
         double expected_absorbed = 0;
         long observed_absorbed = 0, bad = 0;
@@ -821,7 +805,7 @@ TEST_CASE("energy: random scenes of every material never exceed the background, 
         cam.vfov = 60;
         cam.lookfrom = point3(3 * u() - 1.5, 3 * u() - 1.5, 3 * u() - 1.5);
         cam.lookat = point3(0, 0, 0);
-        render_result r = render_checked(cam, world);
+        render_result r = test::render_checked(cam, world);
         long above = 0, negative = 0;
         for (size_t i = 0; i < r.img.data().size(); ++i) {
             double v = r.img.data()[i];

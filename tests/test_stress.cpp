@@ -34,22 +34,6 @@ const double nan_d = std::numeric_limits<double>::quiet_NaN();
 const double inf_d = std::numeric_limits<double>::infinity();
 constexpr double pi_d = 3.14159265358979323846;
 
-uint64_t sample_count(const camera& cam) {
-    return uint64_t(cam.image_width) * uint64_t(cam.height()) * uint64_t(cam.samples_per_pixel);
-}
-
-// Renders and checks what every render here must satisfy: no NaN/Inf sample was dropped, and
-// every pixel is finite and non-negative.
-render_result render_checked(const camera& cam, const hittable& world) {
-    render_result r = render(cam, world);
-    CHECK(r.stats.nonfinite_samples == 0);
-    long bad = 0;
-    for (float v : r.img.data())
-        if (!(std::isfinite(v) && v >= 0)) ++bad;
-    CHECK(bad == 0);
-    return r;
-}
-
 std::shared_ptr<material> lam(double r, double g, double b) { return std::make_shared<lambertian>(color(r, g, b)); }
 
 // A generic (non-axis, non-dyadic) unit direction for translating scenes.
@@ -98,11 +82,11 @@ TEST_CASE("stress: a dyadic scene translated by 1e2, 1e4, 1e5 renders bit-identi
     // lookfrom - lookat) is exact in double. The compiled scene stores exactly those differences
     // rounded once to float, and the camera frame depends only on lookfrom - lookat: the renderer
     // sees identical numbers, so with the same seed the image must be identical bit for bit.
-    const image ref = render_checked(stress_camera(vec3(0, 0, 0), 7), stress_scene(vec3(0, 0, 0), true)).img;
+    const image ref = test::render_checked(stress_camera(vec3(0, 0, 0), 7), stress_scene(vec3(0, 0, 0), true)).img;
     for (double s : {1e2, 1e4, 1e5}) {
         CAPTURE(s);
         const vec3 t(s, -s, 0.5 * s);
-        render_result r = render_checked(stress_camera(t, 7), stress_scene(t, true));
+        render_result r = test::render_checked(stress_camera(t, 7), stress_scene(t, true));
         CHECK(test::same_bits(r.img, ref));
     }
 }
@@ -126,7 +110,7 @@ TEST_CASE("stress: a generic translation by 1e2, 1e4, 1e5 changes the image only
     //     P = 576 pixels; it must lie within +-2.576 (two-sided, significance 0.01).
     const vec3 zero(0, 0, 0);
     const hittable_list world0 = stress_scene(zero, false);
-    const image ref = render_checked(stress_camera(zero, 7), world0).img;
+    const image ref = test::render_checked(stress_camera(zero, 7), world0).img;
     const size_t n = ref.data().size();
     const int spp = stress_camera(zero, 7).samples_per_pixel;
     for (double s : {1e2, 1e4, 1e5}) {
@@ -134,7 +118,7 @@ TEST_CASE("stress: a generic translation by 1e2, 1e4, 1e5 changes the image only
         const vec3 t = s * shift_dir;
         const hittable_list world = stress_scene(t, false);
 
-        const image same = render_checked(stress_camera(t, 7), world).img;
+        const image same = test::render_checked(stress_camera(t, 7), world).img;
         double sum_abs = 0, max_abs = 0;
         long changed_pixels = 0;
         for (size_t p = 0; p < n; p += 3) {
@@ -152,7 +136,7 @@ TEST_CASE("stress: a generic translation by 1e2, 1e4, 1e5 changes the image only
         CHECK(sum_abs / double(n) < 1e-3);
         CHECK(max_abs <= 2.0 / spp);
 
-        const image other = render_checked(stress_camera(t, 1000 + uint64_t(s)), world).img;
+        const image other = test::render_checked(stress_camera(t, 1000 + uint64_t(s)), world).img;
         // Per pixel: the mean over the three channels of the difference.
         const size_t P = n / 3;
         double m = 0, m2 = 0;
@@ -189,7 +173,7 @@ struct acne_counts {
 // sample plus one per hit.
 acne_counts check_acne_free(const camera& cam, const hittable& world) {
     REQUIRE(cam.samples_per_pixel == 1);
-    render_result r = render_checked(cam, world);
+    render_result r = test::render_checked(cam, world);
     acne_counts c;
     const color a(double(float(acne_albedo.x())), double(float(acne_albedo.y())), double(float(acne_albedo.z())));
     for (int y = 0; y < r.img.height(); ++y)
@@ -200,7 +184,7 @@ acne_counts check_acne_free(const camera& cam, const hittable& world) {
             else if (c.other_pixels++ < 3) FAIL_CHECK("pixel (" << x << "," << y << ") = " << p << ": acne");
         }
     CHECK(c.other_pixels == 0);
-    CHECK(r.stats.rays == sample_count(cam) + uint64_t(c.hit_pixels));
+    CHECK(r.stats.rays == test::sample_count(cam) + uint64_t(c.hit_pixels));
     return c;
 }
 
@@ -260,7 +244,7 @@ TEST_CASE("stress: no acne with many samples per pixel: every pixel is a mix of 
     cam.vfov = 30;
     cam.lookfrom = C + vec3(0, 1002, 0);
     cam.lookat = C + vec3(0, 1000, -20);
-    render_result r = render_checked(cam, world);
+    render_result r = test::render_checked(cam, world);
     long bad = 0, mixed = 0;
     uint64_t hits = 0;
     for (int y = 0; y < r.img.height(); ++y)
@@ -276,7 +260,7 @@ TEST_CASE("stress: no acne with many samples per pixel: every pixel is a mix of 
         }
     CHECK(bad == 0);
     CHECK(mixed > 0); // the horizon row really mixes hits and misses
-    CHECK(r.stats.rays == sample_count(cam) + hits);
+    CHECK(r.stats.rays == test::sample_count(cam) + hits);
 }
 
 // ================================================================================================
@@ -300,11 +284,11 @@ TEST_CASE("stress: a camera inside a closed Lambertian sphere sees exactly 0 (no
             cam.vfov = 120;
             cam.lookfrom = C + 0.7 * R * unit_vector(vec3(-1, 2, 0.5));
             cam.lookat = C;
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             long positive = 0;
             for (float v : r.img.data()) positive += v != 0;
             CHECK(positive == 0);
-            CHECK(r.stats.rays == sample_count(cam) * uint64_t(cam.max_depth));
+            CHECK(r.stats.rays == test::sample_count(cam) * uint64_t(cam.max_depth));
         }
     }
 }
@@ -338,7 +322,7 @@ TEST_CASE("stress: a camera inside a glass sphere: trapped exactly beyond the cr
             cam.vfov = vfov;
             cam.lookfrom = C + vec3(0.9 * R, 0, 0);
             cam.lookat = C + vec3(0.9 * R, 0, -1); // looking down -z, vup +y
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             const double th = std::tan(vfov / 2 * pi_d / 180);
             long trapped = 0, escaped = 0, unclassified = 0;
             for (int y = 0; y < H; ++y)
@@ -395,7 +379,7 @@ TEST_CASE("stress: exactly tangent camera rays: finite, within [0, B], for every
                 cam.background = B;
                 cam.lookfrom = O;
                 cam.lookat = O + vec3(0, 0, -1);
-                render_result res = render_checked(cam, world);
+                render_result res = test::render_checked(cam, world);
                 color p = res.img.pixel(0, 0);
                 for (int k = 0; k < 3; ++k) {
                     CHECK(p[k] >= 0);
@@ -425,7 +409,7 @@ TEST_CASE("stress: silhouettes sampled densely: grazing hits stay finite and wit
         cam.vfov = 2;
         cam.lookfrom = O;
         cam.lookat = O + vec3(0, 0.5, -10);
-        render_result r = render_checked(cam, world);
+        render_result r = test::render_checked(cam, world);
         long above = 0;
         for (int y = 0; y < r.img.height(); ++y)
             for (int x = 0; x < r.img.width(); ++x) {
@@ -530,7 +514,7 @@ TEST_CASE("stress: concentric glass in glass renders exactly the background") {
         world.add(std::make_shared<sphere>(C, 1.0, std::make_shared<dielectric>(1.5)));
         world.add(std::make_shared<sphere>(C, 0.5, std::make_shared<dielectric>(1.5)));
         camera cam = glass_camera(C, 5);
-        render_result r = render_checked(cam, world);
+        render_result r = test::render_checked(cam, world);
         CHECK(check_glass_furnace(r.img, *cam.background, cam.samples_per_pixel) == 20 * 20);
     }
 }
@@ -549,7 +533,7 @@ TEST_CASE("stress: the book's hollow glass sphere (inner ior 1/1.5) and off-cent
             world.add(std::make_shared<sphere>(C, 0.5, std::make_shared<dielectric>(1.5)));
             world.add(std::make_shared<sphere>(C, 0.4, std::make_shared<dielectric>(1.0 / 1.5)));
             camera cam = glass_camera(C, 2.5);
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             CHECK(check_glass_furnace(r.img, *cam.background, cam.samples_per_pixel) >= 360);
         }
         {
@@ -558,7 +542,7 @@ TEST_CASE("stress: the book's hollow glass sphere (inner ior 1/1.5) and off-cent
             world.add(std::make_shared<sphere>(C, 1.0, std::make_shared<dielectric>(1.5)));
             world.add(std::make_shared<sphere>(C + vec3(0.3, 0.2, 0.1), 0.6, std::make_shared<dielectric>(1.5)));
             camera cam = glass_camera(C, 5);
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             CHECK(check_glass_furnace(r.img, *cam.background, cam.samples_per_pixel) >= 360);
         }
     }
@@ -581,7 +565,7 @@ TEST_CASE("stress: touching glass spheres (and glass touching a diffuse ground) 
             world.add(std::make_shared<sphere>(C + vec3(0.5, 0, 0), 0.5, std::make_shared<dielectric>(1.5)));
             camera cam = glass_camera(C, 1.5);
             cam.vfov = 10;
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             CHECK(check_glass_furnace(r.img, *cam.background, cam.samples_per_pixel) >= 300);
         }
         {
@@ -591,7 +575,7 @@ TEST_CASE("stress: touching glass spheres (and glass touching a diffuse ground) 
             world.add(std::make_shared<sphere>(C + vec3(0, 1, 0), 1, std::make_shared<dielectric>(1.5)));
             camera cam = glass_camera(C, 6);
             cam.lookat = C + vec3(0, 0.1, 0);
-            render_result r = render_checked(cam, world);
+            render_result r = test::render_checked(cam, world);
             long above = 0;
             for (size_t i = 0; i < r.img.data().size(); ++i) above += r.img.data()[i] > (*cam.background)[int(i % 3)];
             CHECK(above == 0);
@@ -715,7 +699,7 @@ void check_camera_rejected(F change, const std::string& what) {
 } // namespace
 
 TEST_CASE("bad input: the valid baseline renders") {
-    render_checked(valid_camera(), valid_world());
+    test::render_checked(valid_camera(), valid_world());
 }
 
 TEST_CASE("bad input: non-finite sphere centres") {
@@ -752,7 +736,7 @@ TEST_CASE("bad input: negative and non-finite albedo, for lambertian and metal")
         }
     }
     // -0.0 is a valid zero (not negative): renders black, finite.
-    render_checked(valid_camera(), one(point3(0, 0, -3), 1, lam(-0.0, 0.5, 0.5)));
+    test::render_checked(valid_camera(), one(point3(0, 0, -3), 1, lam(-0.0, 0.5, 0.5)));
 }
 
 TEST_CASE("bad input: negative and NaN fuzz; +inf fuzz is clamped to 1 as in the book") {
@@ -761,8 +745,8 @@ TEST_CASE("bad input: negative and NaN fuzz; +inf fuzz is clamped to 1 as in the
         check_world_rejected(one(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.5, 0.5, 0.5), f)), "fuzz");
     }
     // The book's constructor clamps fuzz above 1 to 1, infinity included; -0.0 is zero fuzz.
-    render_checked(valid_camera(), one(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.5, 0.5, 0.5), inf_d)));
-    render_checked(valid_camera(), one(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.5, 0.5, 0.5), -0.0)));
+    test::render_checked(valid_camera(), one(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.5, 0.5, 0.5), inf_d)));
+    test::render_checked(valid_camera(), one(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.5, 0.5, 0.5), -0.0)));
 }
 
 TEST_CASE("bad input: zero, negative and non-finite refraction indices") {
@@ -870,7 +854,7 @@ TEST_CASE("bad input: background colour (negative, NaN, Inf, beyond float range)
     // The largest float is still a valid (if very bright) background.
     camera cam = valid_camera();
     cam.background = color(double(std::numeric_limits<float>::max()), 0, 0);
-    render_checked(cam, valid_world());
+    test::render_checked(cam, valid_world());
 }
 
 TEST_CASE("valid extremes: the camera basis depends only on directions, focus_dist not at all for a pinhole") {
@@ -889,24 +873,24 @@ TEST_CASE("valid extremes: the camera basis depends only on directions, focus_di
     base.background = color(1, 1, 1);
     base.seed = 5;
     const hittable_list world = valid_world();
-    const image ref = render_checked(base, world).img;
+    const image ref = test::render_checked(base, world).img;
 
     camera c = base;
     c.vup = vec3(0, 1e200, 0);
-    CHECK(test::same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(test::render_checked(c, world).img, ref));
     c.vup = vec3(0, 1e-200, 0);
-    CHECK(test::same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(test::render_checked(c, world).img, ref));
     c = base;
     c.lookat = point3(0, 0, -1e200);
-    CHECK(test::same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(test::render_checked(c, world).img, ref));
     c.lookat = point3(0, 0, -1e-200);
-    CHECK(test::same_bits(render_checked(c, world).img, ref));
+    CHECK(test::same_bits(test::render_checked(c, world).img, ref));
 
     for (double fd : {1e-12, 1e12}) {
         CAPTURE(fd);
         c = base;
         c.focus_dist = fd;
-        const image img = render_checked(c, world).img;
+        const image img = test::render_checked(c, world).img;
         long changed = 0;
         for (size_t i = 0; i < img.data().size(); ++i) changed += img.data()[i] != ref.data()[i];
         CHECK(changed <= long(img.data().size()) / 50);
@@ -925,7 +909,7 @@ TEST_CASE("valid extremes: indices of refraction from 1e-30 to 1e30 render finit
         camera cam = valid_camera();
         cam.samples_per_pixel = 8;
         cam.max_depth = 12;
-        render_result r = render_checked(cam, world);
+        render_result r = test::render_checked(cam, world);
         for (float v : r.img.data()) CHECK(v <= 1.0f);
     }
 }

@@ -13,6 +13,7 @@
 #include <doctest/doctest.h>
 
 #include "test_helpers.h"
+#include "user_sphere.h"
 
 #include <atomic>
 #include <cmath>
@@ -26,56 +27,10 @@ namespace {
 
 const double inf_d = std::numeric_limits<double>::infinity();
 
-// A sphere written the way book 1 writes one (its own code, not ours), counting its hit() calls.
-// `box` says what bounding_box() reports: its true box, none (the default: all of space), or a
-// given wrong one.
-class user_sphere : public hittable {
-  public:
-    enum class box_kind { exact, none, given };
+using app::user_sphere;
 
-    user_sphere(point3 c, double r, std::shared_ptr<material> m, box_kind box = box_kind::exact,
-                aabb given = aabb())
-        : c_(c), r_(r), m_(std::move(m)), box_(box), given_(given) {}
-
-    bool hit(const ray& r, interval t, hit_record& rec) const override {
-        ++calls;
-        vec3 oc = c_ - r.origin();
-        double a = r.direction().length_squared(), h = dot(r.direction(), oc);
-        double disc = h * h - a * (oc.length_squared() - r_ * r_);
-        if (disc < 0) return false;
-        double sq = std::sqrt(disc), root = (h - sq) / a;
-        if (!t.surrounds(root)) {
-            root = (h + sq) / a;
-            if (!t.surrounds(root)) return false;
-        }
-        rec.t = root;
-        rec.p = r.at(root);
-        rec.set_face_normal(r, (rec.p - c_) / r_);
-        rec.mat = m_;
-        return true;
-    }
-
-    aabb bounding_box() const override {
-        switch (box_) {
-        case box_kind::exact: return aabb(c_ - vec3(r_, r_, r_), c_ + vec3(r_, r_, r_));
-        case box_kind::none: return hittable::bounding_box();
-        case box_kind::given: return given_;
-        }
-        return aabb();
-    }
-
-    const point3& center() const { return c_; }
-    double radius() const { return r_; }
-
-    static inline std::atomic<long> calls{0};
-
-  private:
-    point3 c_;
-    double r_;
-    std::shared_ptr<material> m_;
-    box_kind box_;
-    aabb given_;
-};
+// Counts the hit() calls of the user spheres that point at it.
+std::atomic<long> hit_calls{0};
 
 std::shared_ptr<material> grey() { return std::make_shared<lambertian>(color(0.5, 0.5, 0.5)); }
 
@@ -86,6 +41,7 @@ std::vector<std::shared_ptr<user_sphere>> grid(user_sphere::box_kind box = user_
     for (int i = 0; i < 100; ++i)
         for (int j = 0; j < 100; ++j)
             shapes.push_back(std::make_shared<user_sphere>(point3(0.5 * i - 25, 0, 0.5 * j - 25), 0.2, m, box));
+    for (auto& s : shapes) s->calls = &hit_calls;
     return shapes;
 }
 
@@ -145,7 +101,7 @@ TEST_CASE("user shapes in the BVH: a ray asks only the few whose boxes it enters
     // the top of the sphere at y = 0.2, 9.8 below the origin.
     const size_t target = 52 * 100 + 47;
     ray3f r = make_ray(vec3(1, 10, -1.5), vec3(0, -1, 0));
-    user_sphere::calls = 0;
+    hit_calls = 0;
     surface_hit hit;
     REQUIRE(scene.intersect(r, hit));
     CHECK(hit.user_shape == shapes[target].get());
@@ -155,14 +111,14 @@ TEST_CASE("user shapes in the BVH: a ray asks only the few whose boxes it enters
     CHECK(hit.front_face);
     // Only the shapes of the leaves whose boxes the ray enters are asked (a leaf holds at most 16);
     // without the BVH all 10,000 would be.
-    CHECK(user_sphere::calls >= 1);
-    CHECK(user_sphere::calls <= 64);
+    CHECK(hit_calls >= 1);
+    CHECK(hit_calls <= 64);
 
     // A ray between the spheres (x = 1.25 and z = -1.25 lie halfway between rows, 0.05 outside
     // the nearest spheres' boxes) misses all of them, and asks few.
-    user_sphere::calls = 0;
+    hit_calls = 0;
     CHECK_FALSE(scene.intersect(make_ray(vec3(1.25, 10, -1.25), vec3(0, -1, 0)), hit));
-    CHECK(user_sphere::calls <= 64);
+    CHECK(hit_calls <= 64);
 
     // A shadow ray along the row z = -1.5 from far outside hits the first sphere of the row.
     CHECK(scene.occluded(make_ray(vec3(-40, 0, -1.5), vec3(1, 0, 0))));
