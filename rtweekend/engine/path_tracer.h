@@ -50,6 +50,7 @@ inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray
         // inside it (directions are unit).
         if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
 
+        // Materials see the geometric normal: the path tracer does not use smooth shading normals.
         material_sample s;
         const bool scattered = m.kind == material_kind::user
                                    ? sample_user_material(scene, *m.source, r, hit, s)
