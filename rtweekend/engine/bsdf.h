@@ -45,7 +45,6 @@
 #include "sampling.h"
 #include "vec3f.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -174,24 +173,22 @@ template <class Uniform>
 bool compiled_material::sample(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s,
                                lobe lobes) const {
     if (!has_diffuse_base() || !(lobes & non_delta_lobe)) return sample_lobe(wo, sp, u, s, lobes);
-    {
-        // A diffuse base under a delta lobe: choose one in proportion to their reflectances (or
-        // the base alone, when the lobe is not asked for).
-        const bool lobe_allowed = (lobes & ~non_delta_lobe) != 0;
-        const float p_base = lobe_allowed ? base_probability() : 1.0f;
-        if (p_base >= 1.0f || u.next_float() < p_base) {
-            float u1 = u.next_float(), u2 = u.next_float();
-            s.wi = sample_cosine_direction(sp.n, u1, u2);
-            s.value = diffuse * (1.0f / p_base);
-            s.pdf = p_base * std::fmax(dot(s.wi, sp.n), 0.0f) * (1.0f / pi_f);
-            s.sampled = non_delta_lobe;
-            return true;
-        }
-        if (!sample_lobe(wo, sp, u, s, lobes)) return false;
-        s.value *= 1.0f / (1.0f - p_base);
-        s.pdf *= 1.0f - p_base;
+    // A diffuse base under a delta lobe: choose one in proportion to their reflectances (or
+    // the base alone, when the lobe is not asked for).
+    const bool lobe_allowed = (lobes & ~non_delta_lobe) != 0;
+    const float p_base = lobe_allowed ? base_probability() : 1.0f;
+    if (p_base >= 1.0f || u.next_float() < p_base) {
+        float u1 = u.next_float(), u2 = u.next_float();
+        s.wi = sample_cosine_direction(sp.n, u1, u2);
+        s.value = diffuse * (1.0f / p_base);
+        s.pdf = p_base * std::fmax(dot(s.wi, sp.n), 0.0f) * (1.0f / pi_f);
+        s.sampled = non_delta_lobe;
         return true;
     }
+    if (!sample_lobe(wo, sp, u, s, lobes)) return false;
+    s.value *= 1.0f / (1.0f - p_base);
+    s.pdf *= 1.0f - p_base;
+    return true;
 }
 
 template <class Uniform>

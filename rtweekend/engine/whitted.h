@@ -40,6 +40,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -200,14 +201,14 @@ inline vec3f whitted_renderer::trace(const ray3f& r, int depth, bool primary, co
 inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng,
                                         uint64_t& rays) const {
     // A user-written hittable reports its own material; built-in shapes index the table.
-    compiled_material reported;
-    whitted_terms reported_terms;
+    std::optional<compiled_material> reported;
+    std::optional<whitted_terms> reported_terms;
     if (hit.user_shape) {
         reported = compile_reported_material(hit.user_record);
-        reported_terms = whitted_terms::of(reported);
+        reported_terms = whitted_terms::of(*reported);
     }
-    const compiled_material& m = hit.user_shape ? reported : compiled_.materials[hit.material];
-    const whitted_terms& terms = hit.user_shape ? reported_terms : terms_[hit.material];
+    const compiled_material& m = hit.user_shape ? *reported : compiled_.materials[hit.material];
+    const whitted_terms& terms = hit.user_shape ? *reported_terms : terms_[hit.material];
     vec3f L = shade(hit, r, m, terms, rays);
     if (depth >= max_recursion_depth_) return L;
 
