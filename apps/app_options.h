@@ -27,6 +27,8 @@ struct options {
     std::optional<double> adaptive;
     std::optional<uint64_t> seed;
     std::optional<bool> cull_back_faces; // --bfc on|off (apps that render XML scenes)
+    std::optional<rt::path_estimator> estimator; // --estimator nee|bsdf|mixture
+    bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     std::string output; // empty: PPM on stdout
     bool quiet = false;
     std::vector<std::string> positional;
@@ -42,6 +44,7 @@ struct options {
         if (threads) cam.threads = *threads;
         if (adaptive) cam.adaptive_error = *adaptive;
         if (seed) cam.seed = *seed;
+        if (estimator) cam.estimator = *estimator;
         cam.quiet = quiet;
     }
 };
@@ -66,7 +69,8 @@ inline bool is_xml_scene(const std::string& path) {
 
 inline void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
-                 "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E] [-o FILE] [--quiet]\n"
+                 "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
+                 "          [--estimator nee|bsdf|mixture] [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
@@ -76,6 +80,9 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "  --adaptive E adaptive sampling: a pixel stops once its 95%% interval is narrow enough\n"
                  "               relative to its value, E the target (--spp is then the most a pixel\n"
                  "               takes; 0 = off)\n"
+                 "  --estimator E how light is found: nee (light sampling and material sampling weighed\n"
+                 "               by multiple importance sampling; default), bsdf (the books' path tracer of\n"
+                 "               books 1 and 2) or mixture (book 3's one-sample mixture)\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -85,7 +92,11 @@ inline void print_usage(const description& d, std::FILE* to) {
                      "For a CENG795 XML scene (.xml), every camera is rendered with the Whitted ray tracer to its\n"
                      "ImageName (.png or .ppm), only --threads, --quiet and these apply:\n"
                      "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
-                     "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n");
+                     "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
+                     "  --integrator path\n"
+                     "               render with the path tracer instead (point lights with indirect light, the\n"
+                     "               diffuse reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
+                     "               --adaptive and --estimator then apply too\n");
 }
 
 [[noreturn]] inline void usage_error(const description& d, const std::string& message) {
@@ -146,7 +157,16 @@ inline options parse(int argc, char** argv, const description& d) {
         else if (arg == "--threads") o.threads = int(parse_integer(d, arg, next(), 0, 1024));
         else if (arg == "--seed") o.seed = uint64_t(parse_integer(d, arg, next(), 0, INT64_MAX));
         else if (arg == "--adaptive") o.adaptive = parse_real(d, arg, next(), 0, 1e6);
-        else if (arg == "--bfc" && d.xml_scenes) {
+        else if (arg == "--estimator") {
+            std::string v = next();
+            rt::path_estimator e;
+            if (!rt::parse_estimator(v, e)) usage_error(d, "--estimator needs nee, bsdf or mixture, got '" + v + "'");
+            o.estimator = e;
+        } else if (arg == "--integrator" && d.xml_scenes) {
+            std::string v = next();
+            if (v != "path" && v != "whitted") usage_error(d, "--integrator needs path or whitted, got '" + v + "'");
+            o.path_integrator = v == "path";
+        } else if (arg == "--bfc" && d.xml_scenes) {
             std::string v = next();
             if (v != "on" && v != "off") usage_error(d, "--bfc needs on or off, got '" + v + "'");
             o.cull_back_faces = v == "on";
@@ -164,9 +184,12 @@ inline options parse(int argc, char** argv, const description& d) {
         usage_error(d, d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
                                              : std::string("expected ") + d.operands);
     const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
-    if (xml && (o.width || o.spp || o.depth || o.adaptive || o.seed))
-        usage_error(d, "--width, --spp, --depth, --adaptive and --seed do not apply to XML scenes "
-                       "(their files set resolution and MaxRecursionDepth)");
+    if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator))
+        usage_error(d, "--spp, --depth, --adaptive, --seed and --estimator apply to XML scenes only with "
+                       "--integrator path, and --width never does (their files set the resolution)");
+    if (xml && o.width) usage_error(d, "--width does not apply to XML scenes (their files set the resolution)");
+    if (xml && o.path_integrator && o.cull_back_faces) usage_error(d, "--bfc applies to the Whitted integrator only");
+    if (!xml && o.path_integrator) usage_error(d, "--integrator applies to XML scenes only (text scenes are path traced)");
     if (!xml && o.cull_back_faces) usage_error(d, "--bfc applies to XML scenes only");
     if (!o.output.empty() && !xml) {
         // Refuse a bad output path before rendering, not after.

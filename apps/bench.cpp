@@ -25,7 +25,8 @@
 //       and time uniform sampling needs to reach each adaptive image's error; with the book's
 //       measured time and 8-bit error, prints the equal-time and equal-error comparisons. With
 //       --runs N (default 1 here) every image is rendered N times, interleaved, and timed by the
-//       median
+//       median. With --estimators nee,bsdf,mixture (any of them) the uniform images are rendered
+//       with each estimator in turn and compared by efficiency, 1 / (MSE * seconds)
 
 #include "app_options.h"
 #include "loop_subdivision.h"
@@ -51,6 +52,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -68,7 +70,7 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
                  "       bench --user-shapes N [--threads N] [--runs N]\n"
                  "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]\n"
-                 "             [--plot F.svg] [--book-seconds S --book-rmse8 E]\n");
+                 "             [--plot F.svg] [--book-seconds S --book-rmse8 E] [--estimators E,E,...]\n");
     std::exit(2);
 }
 
@@ -83,6 +85,7 @@ struct bench_options {
     int runs = 5, threads = 1, size = 1024, levels = 4;
     std::optional<int> width, spp, depth;
     bool threads_given = false, runs_given = false;
+    std::vector<rt::path_estimator> estimators; // --estimators: compare these (bench --error)
 };
 
 bench_options parse(int argc, char** argv) {
@@ -114,6 +117,18 @@ bench_options parse(int argc, char** argv) {
         else if (arg == "--scaling") o.scaling = true;
         else if (arg == "--user-shapes") o.user_shapes = integer(1, 1 << 22);
         else if (arg == "--error") o.error_ref = next();
+        else if (arg == "--estimators") {
+            std::string list = next();
+            for (size_t start = 0; start <= list.size();) {
+                size_t comma = list.find(',', start);
+                std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+                rt::path_estimator e;
+                if (!rt::parse_estimator(name, e)) usage("--estimators: '" + name + "' is not nee, bsdf or mixture");
+                o.estimators.push_back(e);
+                if (comma == std::string::npos) break;
+                start = comma + 1;
+            }
+        }
         else if (arg == "--csv") o.csv = next();
         else if (arg == "--plot") o.plot = next();
         else if (arg == "--max-spp") o.max_spp = integer(1, 1 << 20);
@@ -139,6 +154,7 @@ bench_options parse(int argc, char** argv) {
     if (modes != 1)
         usage("give exactly one of --scene, --mesh with --rays or --make-rays, --scaling, --user-shapes, or --error");
     if (!o.error_ref.empty() && o.scene.empty()) usage("--error needs --scene");
+    if (!o.estimators.empty() && o.error_ref.empty()) usage("--estimators goes with --error");
     if (o.book_seconds.has_value() != o.book_rmse8.has_value()) usage("--book-seconds and --book-rmse8 go together");
     if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
     if (!o.rays.empty() && !o.make_rays.empty()) usage("--rays and --make-rays are separate runs");
@@ -177,18 +193,19 @@ void bench_scene(const bench_options& o) {
     cam.quiet = true;
 
     auto compile_start = std::chrono::steady_clock::now();
-    rt::compiled_scene compiled = rt::compile_scene(s.world, cam.lookfrom);
+    rt::compiled_scene compiled = rt::compile_scene(s.world, cam.lookfrom, s.point_lights);
     double compile_s = seconds_since(compile_start);
     const rt::bvh_stats& bs = compiled.bvh.stats;
-    std::printf("scene %s: %zu spheres, %zu triangles; BVH built in %.2f ms (scene compiled in %.2f ms): "
+    std::printf("scene %s: %zu spheres, %zu triangles, %zu quads, %zu lights; BVH built in %.2f ms (scene compiled in %.2f ms): "
                 "%zu nodes, %zu leaves, depth %d, %zu bytes of geometry and BVH\n",
-                o.scene.c_str(), compiled.spheres.count, compiled.triangles.count, bs.build_ms, compile_s * 1e3, bs.nodes,
+                o.scene.c_str(), compiled.spheres.count, compiled.triangles.count, compiled.quads.count,
+                compiled.lights.lights.size(), bs.build_ms, compile_s * 1e3, bs.nodes,
                 bs.leaves, bs.depth, compiled.geometry_bytes());
 
     std::vector<double> seconds, mrays;
     uint64_t rays = 0;
     for (int run = 0; run < o.runs; ++run) {
-        rt::render_result r = rt::render(cam, s.world);
+        rt::render_result r = rt::render(cam, s.world, s.point_lights);
         seconds.push_back(r.stats.seconds);
         mrays.push_back(r.stats.mrays_per_second());
         rays = r.stats.rays;
@@ -423,7 +440,7 @@ void bench_scaling(const bench_options& o) {
 // --- time against error -------------------------------------------------------------------------
 
 struct error_point {
-    std::string mode; // "uniform" or "adaptive"
+    std::string mode; // "uniform" or "adaptive", or the estimator's name (--estimators)
     int spp;          // samples per pixel (the most a pixel takes, for adaptive)
     double adaptive_error;
     double seconds;
@@ -465,7 +482,13 @@ void bench_error(const bench_options& o) {
     // adaptive sampling (at most max_spp) at halving error targets, which span about the same
     // average sample counts as uniform's from 16 spp up.
     std::vector<error_point> points;
-    for (int spp = 1; spp <= o.max_spp; spp *= 2) points.push_back({"uniform", spp, 0, 0, 0, 0, {}, {}});
+    if (o.estimators.empty()) {
+        for (int spp = 1; spp <= o.max_spp; spp *= 2) points.push_back({"uniform", spp, 0, 0, 0, 0, {}, {}});
+    } else {
+        for (rt::path_estimator e : o.estimators)
+            for (int spp = 1; spp <= o.max_spp; spp *= 2)
+                points.push_back({rt::estimator_name(e), spp, 0, 0, 0, 0, {}, {}});
+    }
     if (o.adaptive)
         for (double e = 0.1; e > 5e-4; e /= 2) points.push_back({"adaptive", o.max_spp, e, 0, 0, 0, {}, {}});
 
@@ -479,7 +502,9 @@ void bench_error(const bench_options& o) {
             rt::camera cam = s.cam;
             cam.samples_per_pixel = p.spp;
             cam.adaptive_error = p.adaptive_error;
-            rt::render_result r = rt::render(cam, s.world);
+            for (rt::path_estimator e : o.estimators)
+                if (p.mode == rt::estimator_name(e)) cam.estimator = e;
+            rt::render_result r = rt::render(cam, s.world, s.point_lights);
             seconds[i].push_back(r.stats.seconds);
             p.seconds = median(seconds[i]);
             p.rays = r.stats.rays;
@@ -512,6 +537,26 @@ void bench_error(const bench_options& o) {
                     p.linear.bias[0], p.linear.bias[1], p.linear.bias[2], p.display.rmse);
     }
     if (!o.csv.empty()) rt::write_file_atomically(o.csv, csv);
+
+    // Estimators: efficiency 1 / (MSE * seconds) at each sample count, and its median over the
+    // sample counts from 16 up (below that, bias-free noise is not yet the whole error: a few
+    // fireflies decide the MSE).
+    if (!o.estimators.empty()) {
+        std::vector<double> medians;
+        for (rt::path_estimator e : o.estimators) {
+            std::vector<double> eff;
+            for (const error_point& p : points)
+                if (p.mode == rt::estimator_name(e) && p.spp >= 16)
+                    eff.push_back(1.0 / (p.linear.rmse * p.linear.rmse * p.seconds));
+            medians.push_back(eff.empty() ? 0.0 : median(eff));
+            std::printf("estimator %s: efficiency 1/(MSE*s) %.4g (median over spp >= 16)\n", rt::estimator_name(e),
+                        medians.back());
+        }
+        for (size_t i = 1; i < medians.size(); ++i)
+            if (medians[i] > 0)
+                std::printf("%s / %s efficiency: %.2fx\n", rt::estimator_name(o.estimators[0]),
+                            rt::estimator_name(o.estimators[i]), medians[0] / medians[i]);
+    }
 
     // Adaptive against uniform: the rays and the time uniform sampling needs to reach each
     // adaptive image's error (interpolated on its curve), in RMSE and in relMSE.
@@ -567,7 +612,11 @@ void bench_error(const bench_options& o) {
         auto [udx, udy] = curve("uniform", true);
         auto [adx, ady] = curve("adaptive", true);
         std::vector<app::plot_series> series;
-        series.push_back({"rtweekend, uniform sampling", udx, udy});
+        if (o.estimators.empty()) series.push_back({"rtweekend, uniform sampling", udx, udy});
+        for (rt::path_estimator e : o.estimators) {
+            auto [ex, ey] = curve(rt::estimator_name(e), true);
+            series.push_back({std::string("rtweekend, estimator ") + rt::estimator_name(e), ex, ey});
+        }
         if (!adx.empty()) series.push_back({"rtweekend, adaptive sampling", adx, ady});
         if (o.book_seconds) {
             app::plot_series book{"the book's code, 10 spp, 1 thread", {*o.book_seconds}, {*o.book_rmse8}};
@@ -576,10 +625,12 @@ void bench_error(const bench_options& o) {
         }
         app::plot_options po;
         int threads = s.cam.threads == 0 ? int(std::max(1u, std::thread::hardware_concurrency())) : s.cam.threads;
-        po.title = "Error against render time, cover scene 400x225 (rtweekend: " + std::to_string(threads) + " thread" +
+        const std::string scene_name = std::filesystem::path(o.scene).stem().string();
+        po.title = "Error against render time, " + scene_name + " " + std::to_string(ref.pixels.width()) + "x" +
+                   std::to_string(ref.pixels.height()) + " (rtweekend: " + std::to_string(threads) + " thread" +
                    (threads == 1 ? "" : "s") + ")";
         po.x_label = "wall-clock seconds";
-        po.y_label = "RMSE against the 6144-spp reference (8-bit, gamma 2)";
+        po.y_label = "RMSE against the reference (8-bit, gamma 2)";
         rt::write_file_atomically(o.plot, app::render_loglog_svg(series, po));
     }
 }

@@ -6,11 +6,13 @@
 //   render scene.txt -o scene.png
 //   render scene.txt --width 1200 --spp 100 > scene.ppm
 //   render scene.xml -o out/ --bfc on
+//   render scene.xml -o out/ --integrator path --spp 256
 
 #include "app_options.h"
 
 #include <rtweekend/camera.h>
 #include <rtweekend/io/scene_file.h>
+#include <rtweekend/engine/path_tracer.h>
 #include <rtweekend/engine/whitted.h>
 #include <rtweekend/io/xml_scene.h>
 
@@ -57,11 +59,43 @@ std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std:
     return paths;
 }
 
+// A course scene through the path tracer: its point lights with indirect light, each material's
+// DiffuseReflectance as a Lambertian albedo under its mirror, conductor or glass lobe. Ambient
+// light has no meaning here (indirect light is computed, not approximated) and is ignored, as are
+// the Blinn-Phong specular terms for now. The background is seen by camera rays only, as in the
+// course; the images keep the course's units (0..255, no gamma). The course shades a point light
+// as kd E cos: pi times the radiance a Lambertian surface of albedo kd reflects under a light of
+// intensity I, so the lights' intensities are taken times pi, and the direct light matches the
+// Whitted image's.
+void render_xml_path_traced(const app::options& opt, const rt::whitted_scene& scene,
+                            const std::vector<std::string>& outputs) {
+    rt::render_settings settings;
+    settings.samples_per_pixel = opt.spp.value_or(64);
+    settings.max_depth = opt.depth.value_or(10);
+    settings.seed = opt.seed.value_or(0);
+    settings.threads = opt.threads.value_or(0);
+    settings.quiet = opt.quiet;
+    settings.adaptive_error = opt.adaptive.value_or(0);
+    settings.estimator = opt.estimator.value_or(rt::path_estimator::nee);
+    const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
+    std::vector<rt::point_light> lights = scene.lights;
+    for (rt::point_light& l : lights) l.intensity *= rt::pi;
+    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+        rt::render_result r = rt::path_trace(scene.world, rt::view_camera_frame(scene.cameras[i]), env, settings, lights);
+        rt::write_whitted_image(outputs[i], r.img);
+        if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
+    }
+}
+
 void render_xml(const app::options& opt) {
     const std::string& scene_path = opt.positional[0];
     rt::whitted_scene scene = rt::load_xml_scene(scene_path);
     if (scene.cameras.empty()) throw rt::scene_error(scene_path + ": the scene has no <Camera>: nothing to render");
     std::vector<std::string> outputs = output_paths(scene, scene_path, opt.output);
+    if (opt.path_integrator) {
+        render_xml_path_traced(opt, scene, outputs);
+        return;
+    }
 
     rt::whitted_options options;
     options.threads = opt.threads.value_or(0);
@@ -90,6 +124,6 @@ int main(int argc, char** argv) {
         }
         rt::scene_description scene = rt::load_scene(opt.positional[0]);
         opt.apply(scene.cam);
-        app::write_output(opt, scene.cam.render_image(scene.world));
+        app::write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights).img);
     });
 }

@@ -19,6 +19,7 @@
 #include "engine/vec3f.h"
 #include "hittable.h"
 #include "io/image_write.h"
+#include "point_light.h"
 #include "scene_error.h"
 #include "vec3.h"
 
@@ -30,6 +31,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rt {
 
@@ -61,10 +63,23 @@ class camera {
     // takes, and render_stats::samples_saved counts the samples not taken.
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
+    // How light is found (engine/render_settings.h): next-event estimation with multiple
+    // importance sampling (the default), bsdf (the books' path tracer of books 1 and 2) or
+    // mixture (book 3's).
+    path_estimator estimator = path_estimator::nee;
 
     // Renders the world and writes a P3 PPM to stdout. On invalid input prints one error line
     // to stderr and exits with status 1 (book-style mains have no error handling of their own).
     void render(const hittable& world) const;
+
+    // Book 3's form: `lights` are the shapes its estimator aims rays at. This renderer finds the
+    // emitters of `world` itself (every shape whose material is a diffuse_light) and samples them
+    // all, so the image is the same whatever `lights` holds; `lights` is accepted for the book's
+    // code and otherwise unused.
+    void render(const hittable& world, const hittable& lights) const {
+        (void)lights;
+        render(world);
+    }
 
     // Renders the world and returns the linear-radiance image. Throws scene_error on bad input.
     image render_image(const hittable& world) const;
@@ -92,6 +107,7 @@ class camera {
         s.quiet = quiet;
         s.adaptive_error = adaptive_error;
         s.adaptive_min_samples = adaptive_min_samples;
+        s.estimator = estimator;
         s.check("camera");
         return s;
     }
@@ -210,6 +226,11 @@ class camera {
 // Renders `world` as `cam` sees it, with the path tracer: the image and the statistics.
 inline render_result render(const camera& cam, const hittable& world) {
     return path_trace(world, cam.frame(), cam.sky(), cam.settings());
+}
+
+// The same with point lights besides the world's emitters.
+inline render_result render(const camera& cam, const hittable& world, const std::vector<point_light>& point_lights) {
+    return path_trace(world, cam.frame(), cam.sky(), cam.settings(), point_lights);
 }
 
 inline image camera::render_image(const hittable& world) const { return rt::render(*this, world).img; }

@@ -5,7 +5,8 @@
 // (engine/scene_compiler.h), so their virtual hit() below serves the teaching surface and user
 // code only. A user's own subclass is rendered through its virtual hit(): inside the renderer's
 // BVH when it reports a bounding box (book 2's bounding_box()), tested against every ray when it
-// does not (a book-1 class, which has none).
+// does not (a book-1 class, which has none). Book 3's pdf_value() and random() let a shape be
+// sampled as a light (pdf.h's hittable_pdf).
 
 #include "aabb.h"
 #include "interval.h"
@@ -23,6 +24,8 @@ class hit_record {
     vec3 normal;
     std::shared_ptr<material> mat;
     double t = 0;
+    double u = 0; // surface coordinates of the hit, for textures (book 2)
+    double v = 0;
     bool front_face = false;
 
     // Sets the hit record normal vector against the ray.
@@ -42,6 +45,13 @@ class hittable {
     // A box that holds everything hit() can hit (book 2). The default, for shapes written before
     // book 2 introduces it, is the whole of space: such a shape is tested against every ray.
     virtual aabb bounding_box() const { return aabb::universe; }
+
+    // Book 3's light sampling. pdf_value: the solid-angle density, seen from `origin`, with which
+    // random(origin) picks `direction`. random: a direction (not necessarily unit) from `origin`
+    // towards the shape. A shape that cannot be sampled keeps these defaults (density 0, and an
+    // arbitrary direction, which a mixture with another pdf then weighs at nothing).
+    virtual double pdf_value(const point3& /*origin*/, const vec3& /*direction*/) const { return 0.0; }
+    virtual vec3 random(const point3& /*origin*/) const { return vec3(1, 0, 0); }
 };
 
 } // namespace rt

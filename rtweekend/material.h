@@ -1,10 +1,14 @@
 #pragma once
-// material: how a surface scatters light (the book's interface), and the three book materials:
-//   lambertian(albedo)           ideal diffuse
+// material: how a surface scatters and emits light (the books' interface), and the books'
+// materials:
+//   lambertian(albedo)           ideal diffuse; lambertian(texture) for a colour that varies
+//                                over the surface (book 2)
 //   metal(albedo, fuzz)          mirror reflection, its direction moved by a uniform random point
 //                                in a ball of radius fuzz (<= 1)
 //   dielectric(refraction_index) glass: reflects or refracts, chosen by Schlick's approximation
-// and two beyond the book, with the exact Fresnel equations (engine/fresnel.h):
+//   diffuse_light(emit)          an emitter (books 2 and 3): emits `emit` from its front face
+//                                only (book 3), or from both with diffuse_light(emit, true) (book 2)
+// and two beyond the books, with the exact Fresnel equations (engine/fresnel.h):
 //   conductor(n, k, tint)        a smooth metal of complex index n + ik: mirror reflection
 //                                weighted by tint * Fr(cos); n, k scalars or per-channel colours
 //   dielectric(refraction_index, absorption)
@@ -13,11 +17,21 @@
 //
 // Each material's physics is written once, in the renderer's material contract (engine/bsdf.h:
 // sample, eval, pdf), which every integrator calls. The renderer recognises these classes and
-// calls the contract directly, without virtual calls. The virtual scatter() below is the book's
-// interface, for code that calls it itself (a ray_color of one's own): for the built-in materials
-// it draws from the same contract, in float (directions and weights agree with double arithmetic
-// to about 1e-6), with random_double(). A user's own material subclass overrides scatter(), and
-// the renderer calls it.
+// calls the contract directly, without virtual calls. The virtual functions below are the books'
+// interface, for code that calls them itself (a ray_color of one's own); for the built-in
+// materials they draw from the same contract, in float (directions and weights agree with double
+// arithmetic to about 1e-6), with random_double(). A user's own material subclass overrides them,
+// and the renderer calls it.
+//
+// The books' three generations of the interface live side by side:
+//   book 1   scatter(r_in, rec, attenuation, scattered)
+//   book 2   emitted(u, v, p)
+//   book 3   scatter(r_in, rec, srec), scattering_pdf(r_in, rec, scattered),
+//            emitted(r_in, rec, u, v, p)
+// By default each later form calls the earlier one: a book-1 material's scatter is reported to
+// book-3 code as a ray that skips the pdf (srec.skip_pdf, as the book's metal and glass do), and a
+// book-2 light emits through book 3's emitted. A class that overrides one form of a name brings
+// the other into scope (`using material::scatter;`), so it is not hidden.
 
 #include "color.h"
 #include "engine/bsdf.h"
@@ -25,17 +39,56 @@
 #include "engine/rng.h"
 #include "engine/vec3f.h"
 #include "hittable.h"
+#include "pdf.h"
 #include "ray.h"
+#include "texture.h"
+
+#include <memory>
 
 namespace rt {
+
+// What book 3's scatter() reports: the attenuation, and either a pdf to draw the next direction
+// from (weighed by scattering_pdf) or, when skip_pdf is set, the one ray to follow (mirrors, glass).
+class scatter_record {
+  public:
+    color attenuation;
+    std::shared_ptr<pdf> pdf_ptr;
+    bool skip_pdf = false;
+    ray skip_pdf_ray;
+};
 
 class material {
   public:
     virtual ~material() = default;
 
+    // Book 2: light emitted at surface coordinates (u, v), point p. None by default.
+    virtual color emitted(double /*u*/, double /*v*/, const point3& /*p*/) const { return color(0, 0, 0); }
+
+    // Book 3: the same, knowing the ray and the hit (a one-sided light looks at rec.front_face).
+    // By default, the book-2 form.
+    virtual color emitted(const ray& /*r_in*/, const hit_record& /*rec*/, double u, double v, const point3& p) const {
+        return emitted(u, v, p);
+    }
+
+    // Book 1: whether the ray scatters; if so, the scattered ray and its attenuation.
     virtual bool scatter(const ray& /*r_in*/, const hit_record& /*rec*/, color& /*attenuation*/,
                          ray& /*scattered*/) const {
         return false;
+    }
+
+    // Book 3: whether the ray scatters; if so, srec. By default, the book-1 scatter's ray,
+    // reported as one to follow without a pdf: a book-1 material works unchanged under book-3
+    // code and under the renderer.
+    virtual bool scatter(const ray& r_in, const hit_record& rec, scatter_record& srec) const {
+        srec.pdf_ptr = nullptr;
+        srec.skip_pdf = true;
+        return scatter(r_in, rec, srec.attenuation, srec.skip_pdf_ray);
+    }
+
+    // Book 3: the density with which the surface scatters r_in into `scattered` (the BRDF times
+    // the cosine, per solid angle). 0 for materials without one (mirrors, glass, lights).
+    virtual double scattering_pdf(const ray& /*r_in*/, const hit_record& /*rec*/, const ray& /*scattered*/) const {
+        return 0;
     }
 };
 
@@ -71,13 +124,37 @@ inline bool scatter_through_contract(const compiled_material& m, const ray& r_in
 
 class lambertian : public material {
   public:
-    lambertian(const color& albedo) : albedo_(albedo) {}
+    lambertian(const color& albedo) : tex_(std::make_shared<solid_color>(albedo)), albedo_(albedo), solid_(true) {}
+    // Book 2: a textured surface, its albedo looked up at the hit's (u, v) and point.
+    lambertian(std::shared_ptr<texture> tex) : tex_(std::move(tex)) {
+        if (const solid_color* solid = exact_solid_color(tex_.get())) {
+            albedo_ = solid->albedo();
+            solid_ = true;
+        }
+    }
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
-        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+        compiled_material m = compiled();
+        if (!solid_) m.albedo = vec3f(tex_->value(rec.u, rec.v, rec.p));
+        return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
+    }
+
+    // Book 3: cosine-weighted about the normal; the renderer's draw is the same density.
+    bool scatter(const ray& /*r_in*/, const hit_record& rec, scatter_record& srec) const override {
+        srec.attenuation = tex_->value(rec.u, rec.v, rec.p);
+        srec.pdf_ptr = std::make_shared<cosine_pdf>(rec.normal);
+        srec.skip_pdf = false;
+        return true;
+    }
+
+    double scattering_pdf(const ray& /*r_in*/, const hit_record& rec, const ray& scattered) const override {
+        double cos_theta = dot(rec.normal, unit_vector(scattered.direction()));
+        return cos_theta < 0 ? 0 : cos_theta / pi;
     }
 
     // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
+    // Complete only when the texture is a solid_color; any other texture is rendered through the
+    // virtual functions above.
     compiled_material compiled() const {
         compiled_material m;
         m.kind = material_kind::lambertian;
@@ -86,10 +163,14 @@ class lambertian : public material {
         return m;
     }
 
+    // The albedo when the texture is a solid_color; black for any other texture.
     const color& albedo() const { return albedo_; }
+    const std::shared_ptr<texture>& tex() const { return tex_; }
 
   private:
-    color albedo_;
+    std::shared_ptr<texture> tex_;
+    color albedo_{0, 0, 0};
+    bool solid_ = false; // tex_ is exactly a solid_color, of colour albedo_
 };
 
 class metal : public material {
@@ -100,6 +181,8 @@ class metal : public material {
     // reflections a little more.
     metal(const color& albedo, double fuzz) : albedo_(albedo), fuzz_(fuzz > 1 ? 1 : fuzz) {}
 
+    // Book 3's scatter(r_in, rec, srec) is material's: this draw, as a ray that skips the pdf.
+    using material::scatter;
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
     }
@@ -132,6 +215,8 @@ class dielectric : public material {
     dielectric(double refraction_index, const color& absorption)
         : refraction_index_(refraction_index), absorption_(absorption), exact_fresnel_(true) {}
 
+    // Book 3's scatter(r_in, rec, srec) is material's: this draw, as a ray that skips the pdf.
+    using material::scatter;
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
     }
@@ -168,6 +253,8 @@ class conductor : public material {
     conductor(double n, double k, const color& tint) : conductor(color(n, n, n), color(k, k, k), tint) {}
     conductor(const color& n, const color& k, const color& tint) : n_(n), k_(k), tint_(tint) {}
 
+    // Book 3's scatter(r_in, rec, srec) is material's: this draw, as a ray that skips the pdf.
+    using material::scatter;
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
     }
@@ -190,12 +277,60 @@ class conductor : public material {
     color n_, k_, tint_;
 };
 
+// An emitter (books 2 and 3). Book 3's light emits from its front face only (the side its
+// shape's normal points to: a quad's cross(u, v)); book 2's from both, which two_sided = true
+// keeps. It scatters nothing (material's scatter() defaults).
+class diffuse_light : public material {
+  public:
+    diffuse_light(std::shared_ptr<texture> tex) : diffuse_light(std::move(tex), false) {}
+    diffuse_light(const color& emit) : diffuse_light(emit, false) {}
+    // Beyond the books: the choice of faces.
+    diffuse_light(const color& emit, bool two_sided)
+        : tex_(std::make_shared<solid_color>(emit)), emission_(emit), two_sided_(two_sided) {}
+    diffuse_light(std::shared_ptr<texture> tex, bool two_sided) : tex_(std::move(tex)), two_sided_(two_sided) {
+        if (const solid_color* solid = exact_solid_color(tex_.get())) emission_ = solid->albedo();
+    }
+
+    // Book 2: the texture's radiance (this form has no hit to tell the faces apart).
+    color emitted(double u, double v, const point3& p) const override { return tex_->value(u, v, p); }
+
+    // Book 3: nothing from the back face unless two-sided.
+    color emitted(const ray& /*r_in*/, const hit_record& rec, double u, double v, const point3& p) const override {
+        if (!rec.front_face && !two_sided_) return color(0, 0, 0);
+        return emitted(u, v, p);
+    }
+
+    // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
+    // Complete only when the texture is a solid_color.
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = material_kind::diffuse_light;
+        m.albedo = {0, 0, 0};
+        m.emission = vec3f(emission_);
+        m.two_sided = two_sided_;
+        m.source = this;
+        return m;
+    }
+
+    // The emitted radiance when the texture is a solid_color; black for any other texture.
+    const color& emission() const { return emission_; }
+    bool two_sided() const { return two_sided_; }
+    const std::shared_ptr<texture>& tex() const { return tex_; }
+
+  private:
+    std::shared_ptr<texture> tex_;
+    color emission_{0, 0, 0};
+    bool two_sided_ = false;
+};
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::conductor;
 using rt::dielectric;
+using rt::diffuse_light;
 using rt::lambertian;
 using rt::material;
 using rt::metal;
+using rt::scatter_record;
 #endif

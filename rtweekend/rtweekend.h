@@ -17,6 +17,11 @@
 #include "sphere.h"
 #include "material.h"
 #include "camera.h"
+#include "texture.h"   // book 2
+#include "quad.h"
+#include "transform.h"
+#include "onb.h"       // book 3
+#include "pdf.h"
 #include "triangle.h"
 #include "mesh.h"
 #include "whitted_material.h"

@@ -1,12 +1,19 @@
 #pragma once
-// sphere(center, radius, material): the book's sphere.
+// sphere(center, radius, material): the book's sphere, with book 2's texture coordinates (rec.u,
+// rec.v from get_sphere_uv) and book 3's light sampling (pdf_value, random: the cone of
+// directions towards the sphere).
 //
 // The ray-sphere test uses the numerically stable form of Haines, Guenther and Akenine-Moller,
 // "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7): the
 // discriminant is computed from the distance of the centre to the ray's line, and the near root
 // from c/q, so neither suffers catastrophic cancellation for small or distant spheres.
 
+#include "constants.h"
 #include "hittable.h"
+#include "interval.h"
+#include "onb.h"
+#include "ray.h"
+#include "vec3.h"
 
 #include <cmath>
 #include <memory>
@@ -59,6 +66,7 @@ class sphere : public hittable {
         rec.p = r.at(rec.t);
         vec3 outward_normal = (rec.p - center_) / radius_;
         rec.set_face_normal(r, outward_normal);
+        get_sphere_uv(outward_normal, rec.u, rec.v);
         rec.mat = mat_;
 
         return true;
@@ -69,6 +77,27 @@ class sphere : public hittable {
         return aabb(center_ - r, center_ + r);
     }
 
+    // Book 3: the density of `direction` when random(origin) draws directions uniformly within
+    // the cone of directions from origin that meet the sphere: 1 / the cone's solid angle,
+    // 2 pi (1 - cos theta_max), with sin^2 theta_max = r^2 / d^2. Beyond the book: from inside
+    // the sphere every direction meets it, and directions are drawn uniformly over all of them.
+    double pdf_value(const point3& origin, const vec3& direction) const override {
+        hit_record rec;
+        if (!this->hit(ray(origin, direction), interval(0.001, infinity), rec)) return 0;
+        double distance_squared = (center_ - origin).length_squared();
+        if (!(distance_squared > radius_ * radius_)) return 1 / (4 * pi);
+        double solid_angle = 2 * pi * one_minus_cos_theta_max(radius_, distance_squared);
+        return 1 / solid_angle;
+    }
+
+    vec3 random(const point3& origin) const override {
+        vec3 direction = center_ - origin;
+        double distance_squared = direction.length_squared();
+        if (!(distance_squared > radius_ * radius_)) return random_unit_vector();
+        onb uvw(direction);
+        return uvw.transform(random_to_sphere(radius_, distance_squared));
+    }
+
     const point3& center() const { return center_; }
     double radius() const { return radius_; }
     const std::shared_ptr<material>& mat() const { return mat_; }
@@ -77,6 +106,37 @@ class sphere : public hittable {
     point3 center_;
     double radius_;
     std::shared_ptr<material> mat_;
+
+    // Book 2's texture coordinates of a point p of the unit sphere about the origin: u, the
+    // angle around the y axis from -x (through +z, +x, -z), and v, the angle from -y, both as
+    // fractions of their range [0, 1]: (1 0 0) -> (0.5, 0.5), (0 1 0) -> (0.5, 1), (0 0 1) ->
+    // (0.25, 0.5), (-1 0 0) -> (0, 0.5), (0 -1 0) -> (0.5, 0), (0 0 -1) -> (0.75, 0.5).
+    static void get_sphere_uv(const point3& p, double& u, double& v) {
+        double theta = std::acos(std::fmax(-1.0, std::fmin(1.0, -p.y()))); // clamped: |p.y| may round above 1
+        double phi = std::atan2(-p.z(), p.x()) + pi;
+        u = phi / (2 * pi);
+        v = theta / pi;
+    }
+
+    // 1 - cos theta_max for a sphere of `radius` seen from `distance_squared` away, written as
+    // x / (1 + sqrt(1 - x)) with x = r^2 / d^2: the plain 1 - sqrt(1 - x) cancels to nothing
+    // for small or distant spheres.
+    static double one_minus_cos_theta_max(double radius, double distance_squared) {
+        double x = radius * radius / distance_squared;
+        return x / (1 + std::sqrt(1 - x));
+    }
+
+    // Book 3: a direction uniform in the cone about +z of half-angle theta_max: cos theta is
+    // uniform between cos theta_max and 1, phi uniform around the axis.
+    static vec3 random_to_sphere(double radius, double distance_squared) {
+        double r1 = random_double();
+        double r2 = random_double();
+        double one_minus_z = r2 * one_minus_cos_theta_max(radius, distance_squared);
+        double z = 1 - one_minus_z;
+        double phi = 2 * pi * r1;
+        double sin_theta = std::sqrt(one_minus_z * (2 - one_minus_z)); // 1 - z^2, without cancelling
+        return vec3(std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z);
+    }
 };
 
 } // namespace rt

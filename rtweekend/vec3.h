@@ -118,6 +118,17 @@ inline vec3 random_on_hemisphere(const vec3& normal) {
     return dot(on_unit_sphere, normal) > 0.0 ? on_unit_sphere : -on_unit_sphere;
 }
 
+// A direction on the hemisphere around +z with density cos(theta) / pi (book 3): r2 = sin^2 theta
+// is uniform, because the projected disk area under a cosine lobe grows linearly with it, and
+// phi = 2 pi r1 goes round the axis.
+inline vec3 random_cosine_direction() {
+    double r1 = random_double();
+    double r2 = random_double();
+    double phi = 2 * pi * r1;
+    double sin_theta = std::sqrt(r2);
+    return vec3(std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, std::sqrt(1 - r2));
+}
+
 // Mirror reflection of v about the unit normal n.
 constexpr vec3 reflect(const vec3& v, const vec3& n) { return v - 2 * dot(v, n) * n; }
 
@@ -140,6 +151,7 @@ using rt::cross;
 using rt::dot;
 using rt::point3;
 using rt::random_in_unit_disk;
+using rt::random_cosine_direction;
 using rt::random_in_unit_sphere;
 using rt::random_on_hemisphere;
 using rt::random_unit_vector;

@@ -14,6 +14,7 @@
 
 #include "color.h"
 #include "hittable_list.h"
+#include "point_light.h"
 #include "vec3.h"
 #include "whitted_material.h"
 
@@ -21,12 +22,6 @@
 #include <vector>
 
 namespace rt {
-
-// A point light of intensity I (power per unit solid angle): irradiance I / d^2 at distance d.
-struct point_light {
-    point3 position;
-    color intensity;
-};
 
 // A CENG795 camera: position e, gaze, up, the image plane's extent (left, right, bottom, top) at
 // distance near_distance along the gaze, and the image size. Pixel (i, j), j = 0 the top row,
@@ -55,7 +50,6 @@ struct whitted_scene {
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
-using rt::point_light;
 using rt::view_camera;
 using rt::whitted_scene;
 #endif

@@ -26,15 +26,18 @@ const std::vector<std::vector<std::string>> ladder = {
      "io/text_lines.h"},
     // 2. math: the book's vectors and intervals, the engine's float vectors, warps, Fresnel
     {"vec3.h", "interval.h", "ray.h", "color.h", "aabb.h", "engine/vec3f.h", "engine/sampling.h",
-     "engine/ray_offset.h", "engine/fresnel.h", "engine/image.h", "engine/validate.h"},
+     "engine/alias_table.h", "engine/light_sampling.h",
+     "engine/ray_offset.h", "engine/fresnel.h", "engine/image.h", "engine/validate.h",
+     "point_light.h"},
     // 3. the material contract
     {"engine/bsdf.h"},
     // 4. the scene as users write it
     {"hittable.h", "hittable_list.h", "sphere.h", "triangle.h", "mesh.h", "material.h", "whitted_material.h",
-     "whitted_scene.h"},
+     "whitted_scene.h", "texture.h", "onb.h", "pdf.h", "quad.h", "transform.h"},
     // 5. the compiled scene: shape sets and their kernels, the BVH, the compilers
     {"engine/leaf_query.h", "engine/bvh.h", "engine/surface_hit.h", "engine/sphere_set.h", "engine/triangle_set.h",
-     "engine/user_shape_set.h", "engine/compiled_scene.h", "engine/material_compiler.h", "engine/scene_compiler.h"},
+     "engine/quad_set.h", "engine/user_shape_set.h", "engine/light_set.h", "engine/compiled_scene.h",
+     "engine/material_compiler.h", "engine/scene_compiler.h"},
     // 6. rendering: settings, the scheduler, the integrators, writing images
     {"measure/adaptive.h", "engine/render_settings.h", "engine/scheduler.h", "engine/camera_frame.h",
      "engine/environment.h", "engine/user_material.h", "engine/path_tracer.h", "engine/whitted.h",

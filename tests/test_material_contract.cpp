@@ -386,6 +386,7 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
                 case material_kind::dielectric:
                 case material_kind::fresnel_dielectric: expect[k] = 1; break;
                 case material_kind::conductor: expect[k] = m.albedo[k] * fresnel_conductor(c, m.eta[k], m.k[k]); break;
+                case material_kind::diffuse_light: expect[k] = 0; break; // an emitter reflects nothing
                 case material_kind::user: break;
                 }
                 if (m.has_diffuse_base()) expect[k] += m.diffuse[k];

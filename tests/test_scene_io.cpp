@@ -189,7 +189,16 @@ TEST_CASE("parse_scene: every malformed line is 'name:LINE: problem'") {
 
     // Wrong field counts.
     check_fails(good_sphere + "\nsphere 0 0 -1 0.5 lambertian 0.1 0.2 0.5 0\n", 2, {"11 fields", "got 10"});
-    check_fails("sphere 0 0 -1 0.5 lambertian 0.1 0.2 0.5 0 0 7\n", 1, {"11 fields", "got 12"});
+    check_fails("sphere 0 0 -1 0.5 lambertian 0.1 0.2 0.5 0 0 7\n", 1, {"unexpected '7' after the material"});
+    check_fails("sphere 0 0 -1 0.5 lambertian 0.1 0.2 0.5 0\n", 1, {"11 fields", "got 10"});
+    check_fails("sphere 0 0 -1 0.5 lambertian 0.1 0.2 0.5 0 0 rotate_y\n", 1, {"rotate_y needs an angle"});
+    check_fails("sphere 0 0 -1 0.5 lambertian 0.1 0.2 0.5 0 0 translate 1 2\n", 1, {"translate needs x y z"});
+    check_fails("quad 0 0 0 1 0 0 2 0 0 lambertian 0.5 0.5 0.5 0 0\n", 1, {"quad has zero area"});
+    check_fails("box 0 0 0 1 0 1 lambertian 0.5 0.5 0.5 0 0\n", 1, {"box corners must differ"});
+    check_fails("point_light 0 1 0 1 1\n", 1, {"point_light x y z r g b"});
+    check_fails("point_light 0 1 0 1 -1 1\n", 1, {"intensity must be non-negative"});
+    check_fails("background 0 -1 0\n", 1, {"background must be non-negative"});
+    check_fails("sphere 0 0 -1 0.5 light 1 1 1 0 0\n", 1, {"unknown material 'light'"});
     check_fails("camera lookfrom 1 2\n", 1, {"lookfrom", "got 4"});
     check_fails("camera vfov 20 30\n", 1, {"vfov", "got 4"});
     check_fails("camera image_width\n", 1, {"image_width", "got 2"});

@@ -34,6 +34,8 @@
 //   dielectric            the book's glass: reflect with Schlick's probability R, else refract
 //   fresnel_dielectric    the same with the exact Fresnel reflectance; absorbs inside (Beer)
 //   conductor             mirror weighted by tint * Fr(cos) per channel (exact, complex index)
+//   diffuse_light         an emitter (book 2's diffuse_light): radiance `emission` towards every
+//                         direction on the front side (both sides if two_sided); scatters nothing
 //   user                  a user's material subclass: the integrators call its virtual scatter()
 //                         (user_material.h); it has no pdf and is treated like a delta lobe
 // A material compiled from the CENG795 course's (whitted_material) may also carry a Lambertian
@@ -52,7 +54,7 @@ namespace rt {
 
 class material;
 
-enum class material_kind : uint8_t { lambertian, metal, dielectric, fresnel_dielectric, conductor, user };
+enum class material_kind : uint8_t { lambertian, metal, dielectric, fresnel_dielectric, conductor, diffuse_light, user };
 
 // Which lobes sample() may choose from: bit flags.
 enum lobe : uint8_t {
@@ -89,6 +91,8 @@ struct compiled_material {
     vec3f absorption{0, 0, 0};      // fresnel_dielectric: per unit length inside
     vec3f eta{1, 1, 1}, k{0, 0, 0}; // conductor: complex index eta + ik per channel
     vec3f diffuse{0, 0, 0};         // a Lambertian base under a delta lobe (course materials); 0: none
+    vec3f emission{0, 0, 0};        // diffuse_light: emitted radiance
+    bool two_sided = false;         // diffuse_light: emits from the back face too
     const material* source = nullptr; // what it was compiled from; a user material is called through it
 
     // Draws wi for wo, restricted to `lobes`; false when the light is absorbed (or no lobe of
@@ -97,8 +101,12 @@ struct compiled_material {
     bool sample(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s, lobe lobes = all_lobes) const;
     vec3f eval(const vec3f& wo, const vec3f& wi, const shading_point& sp) const;
     float pdf(const vec3f& wo, const vec3f& wi, const shading_point& sp) const;
-    // No built-in material emits yet.
-    vec3f emitted(const vec3f& /*wo*/, const shading_point& /*sp*/) const { return {0, 0, 0}; }
+    // Radiance emitted towards wo: a diffuse_light's, from its front face (or either face when
+    // two-sided, as book 2's diffuse_light is); zero for every other material.
+    vec3f emitted(const vec3f& /*wo*/, const shading_point& sp) const {
+        return sp.front_face || two_sided ? emission : vec3f{0, 0, 0};
+    }
+    bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
 
     // Whether light travelling inside loses energy with distance (absorbing glass), and how much
     // is left after `distance`: exp(-absorption * distance) per channel (Beer-Lambert).
@@ -113,6 +121,10 @@ struct compiled_material {
     }
     bool has_diffuse_base() const { return diffuse.x > 0 || diffuse.y > 0 || diffuse.z > 0; }
     bool is_glossy_metal() const { return kind == material_kind::metal && fuzz >= min_glossy_fuzz; }
+    // Whether some lobe has a density (diffuse or glossy): light sampling can reach it.
+    bool has_non_delta_lobe() const {
+        return kind == material_kind::lambertian || is_glossy_metal() || has_diffuse_base();
+    }
 
   private:
     template <class Uniform>
@@ -271,6 +283,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         s.sampled = delta_reflection;
         return true;
     }
+    case material_kind::diffuse_light: break; // absorbs what reaches it
     case material_kind::user: break; // the integrators call the user's scatter() (user_material.h)
     }
     return false;

@@ -3,10 +3,15 @@
 // camera's position (the compiled scene is stored relative to the same point). The book's camera
 // (camera.h) computes one from its settings.
 
+#include "../scene_error.h"
 #include "../vec3.h"
+#include "../whitted_scene.h"
 #include "rng.h"
 #include "sampling.h"
 #include "vec3f.h"
+
+#include <cmath>
+#include <string>
 
 namespace rt {
 
@@ -48,5 +53,32 @@ struct camera_frame {
         return generate(float(x) + jx, float(y) + jy, lu, lv);
     }
 };
+
+// The frame of a CENG795 course camera (whitted_scene.h): the image plane at near_distance along
+// the gaze, spanning [left, right] x [bottom, top]; pixel (i, j), j = 0 the top row, centred at
+// e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v, with w = -gaze,
+// u = unit(up x w), v = w x u. Throws scene_error for settings that make no image.
+inline camera_frame view_camera_frame(const view_camera& c) {
+    auto finite = [](const vec3& a) { return std::isfinite(a.x()) && std::isfinite(a.y()) && std::isfinite(a.z()); };
+    if (c.width <= 0 || c.height <= 0 || c.width > (1 << 16) || c.height > (1 << 16))
+        throw scene_error("image resolution must be between 1 and 65536, got " + std::to_string(c.width) + "x" +
+                          std::to_string(c.height));
+    if (!finite(c.position) || !finite(c.gaze) || !finite(c.up) ||
+        !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
+        throw scene_error("camera settings must be finite numbers");
+    const vec3 w = -unit_vector(c.gaze);
+    const vec3 u = unit_vector(cross(c.up, w));
+    const vec3 v = cross(w, u);
+    if (!finite(u) || !finite(w)) throw scene_error("camera gaze and up must be non-zero and not parallel");
+    const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;
+    camera_frame f;
+    f.width = c.width;
+    f.height = c.height;
+    f.position = c.position;
+    f.pixel00 = vec3f(-c.near_distance * w + c.left * u + c.top * v + 0.5 * (du + dv));
+    f.pixel_delta_u = vec3f(du);
+    f.pixel_delta_v = vec3f(dv);
+    return f;
+}
 
 } // namespace rt

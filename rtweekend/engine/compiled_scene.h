@@ -21,6 +21,8 @@
 #include "bvh.h"
 #include "force_inline.h"
 #include "leaf_query.h"
+#include "light_set.h"
+#include "quad_set.h"
 #include "sphere_set.h"
 #include "surface_hit.h"
 #include "triangle_set.h"
@@ -41,6 +43,7 @@ RTWEEKEND_FORCE_INLINE decltype(auto) with_shape_kind(shape_kind kind, F&& f) {
     switch (kind) {
     case shape_kind::sphere: return f(std::integral_constant<shape_kind, shape_kind::sphere>{});
     case shape_kind::triangle: return f(std::integral_constant<shape_kind, shape_kind::triangle>{});
+    case shape_kind::quad: return f(std::integral_constant<shape_kind, shape_kind::quad>{});
     case shape_kind::user: break;
     }
     return f(std::integral_constant<shape_kind, shape_kind::user>{});
@@ -52,8 +55,10 @@ class compiled_scene {
     std::vector<compiled_material> materials;
     sphere_set spheres;
     triangle_set triangles;
+    quad_set quads;
     user_shape_set user_shapes; // user-written hittables with a bounding box
     bvh8 bvh;                   // over every set
+    light_set lights;           // the emitters among the shapes (and point lights), for light sampling
 
     // User-written hittables without a bounding box (the default hittable::bounding_box, or a box
     // that is empty, infinite or beyond float's range), tested after the BVH. Owned by the world.
@@ -81,7 +86,7 @@ class compiled_scene {
 
     // Bytes held for tracing: the sets and the BVH nodes.
     size_t geometry_bytes() const {
-        return bvh.stats.bytes() + spheres.bytes() + triangles.bytes() + user_shapes.bytes();
+        return bvh.stats.bytes() + spheres.bytes() + triangles.bytes() + quads.bytes() + user_shapes.bytes();
     }
 
   private:
@@ -110,6 +115,8 @@ RTWEEKEND_FORCE_INLINE bool compiled_scene::leaf_kernel(const ray3f& r, uint32_t
     } else if constexpr (K == shape_kind::triangle) {
         if (!state.sheared) state.sheared.emplace(r); // the ray's first triangle leaf
         return triangles.intersect_leaf<Q>(r, *state.sheared, first, count, t_best, best);
+    } else if constexpr (K == shape_kind::quad) {
+        return quads.intersect_leaf<Q>(r, first, count, t_best, best);
     } else {
         return user_shapes.intersect_leaf<Q>(r, origin, first, count, t_best, best, state.user_record);
     }
@@ -135,9 +142,12 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, hit_recor
 inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const {
     hit.t = t;
     hit.user_shape = nullptr;
+    hit.kind = best.kind;
+    hit.index = best.index;
     switch (best.kind) {
     case shape_kind::sphere: spheres.complete_hit(r, t, best.index, hit); break;
     case shape_kind::triangle: triangles.complete_hit(r, t, best.index, hit); break;
+    case shape_kind::quad: quads.complete_hit(r, t, best.index, hit); break;
     case shape_kind::user: complete_user_hit(user_shapes.shapes[best.index], hit.user_record, origin, hit); break;
     }
 }
@@ -172,7 +182,7 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
 }
 
 inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const {
-    if (spheres.cull.empty() && triangles.cull.empty()) return intersect(r, hit);
+    if (spheres.cull.empty() && triangles.cull.empty() && quads.cull.empty()) return intersect(r, hit);
     hit.user_shape = nullptr;
     float t = r.tmax;
     hit_ref best;
@@ -204,6 +214,7 @@ void compiled_scene::set_back_face_culling(Predicate cullable) {
     };
     spheres.cull = flags(spheres.material, spheres.count);
     triangles.cull = flags(triangles.material, triangles.count);
+    quads.cull = flags(quads.material, quads.count);
 }
 
 } // namespace rt

@@ -9,9 +9,13 @@ namespace rt {
 struct environment {
     bool constant = false; // false: the book's sky
     vec3f color{0, 0, 0};  // the constant background
+    // The course scenes' background (CENG795): seen by camera rays that miss, black to every
+    // other ray, so it lights nothing.
+    bool camera_rays_only = false;
 
     static environment sky() { return {}; }
     static environment uniform(const vec3f& c) { return {true, c}; }
+    static environment backdrop(const vec3f& c) { return {true, c, true}; }
 
     vec3f eval(const vec3f& unit_dir) const {
         if (constant) return color;

@@ -13,12 +13,12 @@
 
 namespace rt {
 
-// The kinds of shape a BVH leaf can hold (each leaf holds one kind): built-in spheres and
-// triangles, and user-written hittables with a bounding box. The leaf reference has room for
-// seven (bvh.h); the kinds to come (quads, moving spheres, instances) each add a value here, a set
-// of their own and a case in compiled_scene's dispatch.
-enum class shape_kind : uint8_t { sphere = 0, triangle = 1, user = 2 };
-inline constexpr int shape_kind_count = 3;
+// The kinds of shape a BVH leaf can hold (each leaf holds one kind): built-in spheres, triangles
+// and quads, and user-written hittables with a bounding box. The leaf reference has room for
+// seven (bvh.h); the kinds to come (moving spheres, instances) each add a value here, a set of
+// their own and a case in compiled_scene's dispatch.
+enum class shape_kind : uint8_t { sphere = 0, triangle = 1, quad = 2, user = 3 };
+inline constexpr int shape_kind_count = 4;
 
 enum class query : uint8_t { closest, any, closest_culled };
 

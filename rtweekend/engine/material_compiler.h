@@ -2,14 +2,16 @@
 // compile_material: the renderer's table entry (the material contract, bsdf.h) for a material of
 // the teaching surface, after checking its parameters. The built-in materials are recognised by
 // their exact type; any other material (a user's own subclass, or a subclass of a built-in one)
-// becomes a user entry, rendered through its virtual scatter().
+// becomes a user entry, rendered through its virtual functions, and so does a lambertian or a
+// diffuse_light whose texture is not a solid_color (its value() is looked up per hit).
 //
 // Throws scene_error for a parameter the renderer cannot use: a negative or non-finite colour,
-// a NaN or negative fuzz, a refraction index that is not positive and finite, a conductor's n
-// that is not positive, a negative or non-finite Phong exponent or absorption index.
+// a NaN or negative fuzz, a null texture, a refraction index that is not positive and finite, a
+// conductor's n that is not positive, a negative or non-finite Phong exponent or absorption index.
 
 #include "../material.h"
 #include "../scene_error.h"
+#include "../texture.h"
 #include "../whitted_material.h"
 #include "bsdf.h"
 #include "validate.h"
@@ -44,14 +46,31 @@ inline void check_whitted_material(const whitted_material& w) {
         throw scene_error("absorption index must be finite and non-negative, got " + std::to_string(w.absorption_index));
 }
 
+// A material the renderer calls through its virtual functions.
+inline compiled_material user_entry(const material& m) {
+    compiled_material user;
+    user.kind = material_kind::user;
+    user.source = &m;
+    return user;
+}
+
 } // namespace detail
 
 inline compiled_material compile_material(const material& m) {
     const std::type_info& type = typeid(m);
     if (type == typeid(lambertian)) {
         auto& l = static_cast<const lambertian&>(m);
+        if (!l.tex()) throw scene_error("lambertian texture is null");
+        if (!exact_solid_color(l.tex().get())) return detail::user_entry(m); // a texture: its value() per hit
         check_color(l.albedo(), "lambertian albedo");
         return l.compiled();
+    }
+    if (type == typeid(diffuse_light)) {
+        auto& d = static_cast<const diffuse_light&>(m);
+        if (!d.tex()) throw scene_error("diffuse_light texture is null");
+        if (!exact_solid_color(d.tex().get())) return detail::user_entry(m);
+        check_color(d.emission(), "diffuse_light emission");
+        return d.compiled();
     }
     if (type == typeid(metal)) {
         auto& mt = static_cast<const metal&>(m);
@@ -79,10 +98,7 @@ inline compiled_material compile_material(const material& m) {
         detail::check_whitted_material(w);
         return w.compiled();
     }
-    compiled_material user;
-    user.kind = material_kind::user;
-    user.source = &m;
-    return user;
+    return detail::user_entry(m);
 }
 
 } // namespace rt

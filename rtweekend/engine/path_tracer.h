@@ -12,6 +12,8 @@
 #include "camera_frame.h"
 #include "compiled_scene.h"
 #include "environment.h"
+#include "light_sampling.h"
+#include "light_set.h"
 #include "ray_offset.h"
 #include "render_settings.h"
 #include "rng.h"
@@ -23,73 +25,215 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <type_traits>
+#include <vector>
 
 namespace rt {
 
 // Renders `world` through `frame` with the path tracer. Throws scene_error on bad input.
 render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
                          const render_settings& settings);
+// The same with point lights, which only light sampling finds (the bsdf estimator never does).
+render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+                         const render_settings& settings, const std::vector<point_light>& point_lights);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 namespace detail {
 
-// One path from the camera: the book's ray_color, as a loop. Returns the radiance it carries.
-inline vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pcg32& rng,
-                        uint64_t& rays) {
-    vec3f throughput{1, 1, 1};
+// Where a ray leaving the surface at `hit` in direction wi starts: pushed off the surface on the
+// side wi points to.
+inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax) {
+    const vec3f side = dot(wi, hit.normal) >= 0 ? hit.normal : -hit.normal;
+    ray3f r;
+    r.origin = offset_ray_origin(hit.p, side) + hit.offset * side;
+    r.dir = wi;
+    r.tmin = 0;
+    r.tmax = tmax;
+    return r;
+}
+
+inline bool is_black(const vec3f& c) { return !(c.x > 0 || c.y > 0 || c.z > 0); }
+
+// Paths longer than this many scattering events face Russian roulette (nee only): a path whose
+// throughput has fallen to q (its largest channel) goes on with probability q and is weighed by
+// 1/q when it does, so the mean is unchanged (Arvo and Kirk 1990; pbrt, 4th ed., 14.1.5).
+inline constexpr int roulette_depth = 3;
+
+// The material at a path vertex, as the estimators ask it: a built-in material through the
+// contract (bsdf.h), a user's through its virtual functions (user_material.h).
+struct vertex_material {
+    const compiled_material& m;
+    shading_point sp;
+    vec3f wo;
+    const user_material_hit* user; // set for a user's material, which has scattered already
+
+    bool has_density() const { return user ? user->has_density() : m.has_non_delta_lobe(); }
+    vec3f eval(const vec3f& wi) const { return user ? user->eval(wi) : m.eval(wo, wi, sp); }
+    float pdf(const vec3f& wi) const { return user ? user->pdf(wi) : m.pdf(wo, wi, sp); }
+    bool sample(pcg32& rng, material_sample& s) const { return user ? user->sample(s) : m.sample(wo, sp, rng, s); }
+};
+
+// One path from the camera, estimated with E: the radiance it carries. Materials see the
+// geometric normal (the path tracer does not use smooth shading normals).
+template <path_estimator E>
+vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pcg32& rng,
+                 uint64_t& rays) {
+    const light_set& lights = scene.lights;
+    vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
     surface_hit hit;
     std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
+    // The vertex the ray left from, for weighing an emitter it hits against light sampling there:
+    // its position and the density its material drew the ray with. A camera ray, a ray after a
+    // delta lobe, and every ray of the bsdf and mixture estimators count emission in full.
+    bool count_emission_fully = true;
+    vec3f last_p;
+    float last_pdf = 0;
     for (int depth = 0; depth < max_depth; ++depth) {
         ++rays;
-        if (!scene.intersect(r, hit)) return throughput * env.eval(r.dir);
+        if (!scene.intersect(r, hit))
+            return depth > 0 && env.camera_rays_only ? radiance : radiance + throughput * env.eval(r.dir);
 
         if (hit.user_shape) reported = compile_reported_material(hit.user_record);
         const compiled_material& m = hit.user_shape ? *reported : scene.materials[hit.material];
         // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
         // inside it (directions are unit).
         if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+        const shading_point sp{hit.normal, hit.front_face};
+        const vec3f wo = -r.dir;
 
-        // Materials see the geometric normal: the path tracer does not use smooth shading normals.
+        if (m.emits()) {
+            const vec3f le = m.emitted(wo, sp);
+            float weight = 1;
+            if (E == path_estimator::nee && !count_emission_fully && !is_black(le)) {
+                // Light sampling at the last vertex could have drawn this point too: weigh the two
+                // strategies by the power heuristic (Veach 1997, ch. 9).
+                const uint32_t l = lights.light_at(hit.kind, hit.index);
+                if (l != light_set::none) {
+                    const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
+                    weight = power_heuristic(last_pdf, lights.pdf(l, last_p, hit.p, outward));
+                }
+            }
+            radiance += throughput * le * weight;
+        }
+        if (m.kind == material_kind::diffuse_light) return radiance; // emitters scatter nothing
+
+        // A user's material: its own emission, counted in full (it is not light-sampled), then
+        // its scatter(), asked once.
+        std::optional<user_material_hit> user;
+        if (m.kind == material_kind::user) {
+            user.emplace(scene, *m.source, r, hit);
+            radiance += throughput * user->emitted();
+            if (!user->scatter()) return radiance;
+        }
+        const vertex_material vm{m, sp, wo, user ? &*user : nullptr};
+        const bool has_density = vm.has_density();
+
+        // Next-event estimation: a point on a light, and a shadow ray to it.
+        if (E == path_estimator::nee && !lights.empty() && has_density) {
+            light_choice lc;
+            if (lights.sample(hit.p, rng, lc) && !is_black(lc.radiance)) {
+                const vec3f f = vm.eval(lc.wi);
+                if (!is_black(f)) {
+                    ++rays;
+                    if (!scene.occluded(spawn_ray(hit, lc.wi, lc.distance * (1.0f - 1e-4f)))) {
+                        const float weight = lc.delta ? 1.0f : power_heuristic(lc.pdf, vm.pdf(lc.wi));
+                        radiance += throughput * f * lc.radiance * (weight / lc.pdf);
+                    }
+                }
+            }
+        }
+
+        // The mixture below covers area lights only; a point light, which no direction can hit,
+        // is sampled on its own (next-event estimation without a second strategy to weigh).
+        if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
+            light_choice lc;
+            if (lights.sample_point(hit.p, rng, lc)) {
+                const vec3f f = vm.eval(lc.wi);
+                if (!is_black(f) && !is_black(lc.radiance)) {
+                    ++rays;
+                    if (!scene.occluded(spawn_ray(hit, lc.wi, lc.distance * (1.0f - 1e-4f))))
+                        radiance += throughput * f * lc.radiance * (1.0f / lc.pdf);
+                }
+            }
+        }
+
         material_sample s;
-        const bool scattered = m.kind == material_kind::user
-                                   ? sample_user_material(scene, *m.source, r, hit, s)
-                                   : m.sample(-r.dir, shading_point{hit.normal, hit.front_face}, rng, s);
-        if (!scattered) return {0, 0, 0};
+        if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
+            // Book 3's one-sample mixture: the direction comes from the lights or from the
+            // material, half the time each, and is weighed by the mixture of both densities.
+            if (rng.next_float() < 0.5f) {
+                light_choice lc;
+                if (!lights.sample_area(hit.p, rng, lc)) return radiance;
+                s.wi = lc.wi;
+                s.sampled = non_delta_lobe;
+            } else {
+                if (!vm.sample(rng, s)) return radiance;
+                if (s.is_delta()) s.value *= 2.0f; // chosen half as often as the material alone would
+            }
+            if (!s.is_delta()) {
+                const vec3f f = vm.eval(s.wi);
+                const float pdf = 0.5f * lights.area_pdf_along(hit.p, s.wi) + 0.5f * vm.pdf(s.wi);
+                if (is_black(f) || !(pdf > 0)) return radiance;
+                s.value = f / pdf;
+            }
+        } else if (!vm.sample(rng, s)) {
+            return radiance;
+        }
         throughput *= s.value;
+        count_emission_fully = E != path_estimator::nee || s.is_delta();
+        last_p = hit.p;
+        last_pdf = s.pdf;
 
-        // Leave the surface on the side the new direction points to.
-        vec3f side = dot(s.wi, hit.normal) >= 0 ? hit.normal : -hit.normal;
-        r.origin = offset_ray_origin(hit.p, side) + hit.offset * side;
-        r.dir = s.wi;
-        r.tmin = 0;
-        r.tmax = std::numeric_limits<float>::infinity();
+        if (E == path_estimator::nee && depth >= roulette_depth) {
+            const float q = max_component(throughput);
+            if (q < 1.0f) {
+                if (!(rng.next_float() < q)) return radiance;
+                throughput *= 1.0f / q;
+            }
+        }
+        r = spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
     }
-    return {0, 0, 0}; // the book: no more light is gathered past the bounce limit
+    return radiance; // the book: no more light is gathered past the bounce limit
 }
 
 } // namespace detail
 
 inline render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
                                 const render_settings& settings) {
+    return path_trace(world, frame, env, settings, {});
+}
+
+inline render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+                                const render_settings& settings, const std::vector<point_light>& point_lights) {
     auto start = std::chrono::steady_clock::now();
     settings.check();
-    const compiled_scene scene = compile_scene(world, frame.position);
+    const compiled_scene scene = compile_scene(world, frame.position, point_lights);
     const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
     const bool user_code = scene.calls_user_code();
-    return render_samples(
-        frame.width, frame.height, settings,
-        [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-            ray3f r = frame.sample_ray(x, y, spp, rng);
-            if (user_code) {
-                // User-written shapes and materials may call random_double(): give them this
-                // sample's generator so the image stays deterministic.
-                detail::scoped_sample_rng guard(rng);
-                return detail::trace_path(scene, env, r, max_depth, rng, rays);
-            }
-            return detail::trace_path(scene, env, r, max_depth, rng, rays);
-        },
-        start);
+    auto render_with = [&](auto estimator) {
+        constexpr path_estimator E = decltype(estimator)::value;
+        return render_samples(
+            frame.width, frame.height, settings,
+            [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
+                ray3f r = frame.sample_ray(x, y, spp, rng);
+                if (user_code) {
+                    // User-written shapes and materials may call random_double(): give them this
+                    // sample's generator so the image stays deterministic.
+                    detail::scoped_sample_rng guard(rng);
+                    return detail::trace_path<E>(scene, env, r, max_depth, rng, rays);
+                }
+                return detail::trace_path<E>(scene, env, r, max_depth, rng, rays);
+            },
+            start);
+    };
+    switch (settings.estimator) {
+    case path_estimator::bsdf: return render_with(std::integral_constant<path_estimator, path_estimator::bsdf>{});
+    case path_estimator::mixture:
+        return render_with(std::integral_constant<path_estimator, path_estimator::mixture>{});
+    case path_estimator::nee: break;
+    }
+    return render_with(std::integral_constant<path_estimator, path_estimator::nee>{});
 }
 
 } // namespace rt

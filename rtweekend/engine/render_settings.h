@@ -12,6 +12,35 @@
 
 namespace rt {
 
+// How the path tracer estimates the light arriving at a surface (path_tracer.h):
+//   nee       next-event estimation: at every diffuse or glossy surface a light is sampled and a
+//             shadow ray tested, besides the material's own sample; the two are weighed by
+//             multiple importance sampling (power heuristic). Russian roulette ends long paths.
+//   bsdf      the books' path tracer: the material's sample alone; a light is found only when a
+//             ray happens to hit it (point lights never are)
+//   mixture   book 3's estimator: one direction, drawn half the time towards the lights and half
+//             from the material, weighed by the mixture of the two densities
+enum class path_estimator : uint8_t { nee, bsdf, mixture };
+
+inline const char* estimator_name(path_estimator e) {
+    switch (e) {
+    case path_estimator::nee: return "nee";
+    case path_estimator::bsdf: return "bsdf";
+    case path_estimator::mixture: return "mixture";
+    }
+    return "?";
+}
+
+// The estimator named `name` ("nee", "bsdf" or "mixture"); false for another name.
+inline bool parse_estimator(const std::string& name, path_estimator& e) {
+    for (path_estimator candidate : {path_estimator::nee, path_estimator::bsdf, path_estimator::mixture})
+        if (name == estimator_name(candidate)) {
+            e = candidate;
+            return true;
+        }
+    return false;
+}
+
 struct render_settings {
     int samples_per_pixel = 10; // most samples a pixel takes (all of them without adaptive sampling)
     int max_depth = 10;         // most rays in one path (the path tracer)
@@ -22,6 +51,7 @@ struct render_settings {
     // adaptive_min_samples samples, then more until its error estimate is small enough.
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
+    path_estimator estimator = path_estimator::nee; // the path tracer's
 
     // Throws scene_error "<owner>: <problem>" for a setting that cannot be rendered.
     void check(const std::string& owner = "render settings") const {

@@ -21,8 +21,11 @@
 #include "../hittable_list.h"
 #include "../material.h"
 #include "../mesh.h"
+#include "../point_light.h"
+#include "../quad.h"
 #include "../scene_error.h"
 #include "../sphere.h"
+#include "../transform.h"
 #include "../triangle.h"
 #include "bvh.h"
 #include "compiled_scene.h"
@@ -42,6 +45,8 @@
 namespace rt {
 
 compiled_scene compile_scene(const hittable& world, const point3& origin);
+// The same, with point lights for light sampling (besides the emitters the world holds).
+compiled_scene compile_scene(const hittable& world, const point3& origin, const std::vector<point_light>& point_lights);
 
 // The table entry for the material a user's hittable reported at a hit (compiled on the spot).
 compiled_material compile_reported_material(const hit_record& rec);
@@ -50,31 +55,109 @@ compiled_material compile_reported_material(const hit_record& rec);
 
 namespace detail {
 
+// A rigid motion x -> M x + t, in double: the translate and rotate_y nodes a shape sits under,
+// composed. The compiler applies it to the shapes themselves, so a moved box costs nothing at
+// render time.
+struct rigid_transform {
+    vec3 m[3] = {vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)}; // rows of M
+    vec3 t{0, 0, 0};
+    bool identity = true;
+
+    vec3 vector(const vec3& v) const { return identity ? v : vec3(dot(m[0], v), dot(m[1], v), dot(m[2], v)); }
+    point3 point(const point3& p) const { return identity ? p : vector(p) + t; }
+    // This transform after `inner` (inner applied first).
+    rigid_transform then(const rigid_transform& inner) const {
+        rigid_transform r;
+        for (int i = 0; i < 3; ++i) {
+            const vec3 col0(inner.m[0].x(), inner.m[1].x(), inner.m[2].x());
+            const vec3 col1(inner.m[0].y(), inner.m[1].y(), inner.m[2].y());
+            const vec3 col2(inner.m[0].z(), inner.m[1].z(), inner.m[2].z());
+            r.m[i] = vec3(dot(m[i], col0), dot(m[i], col1), dot(m[i], col2));
+        }
+        r.t = vector(inner.t) + t;
+        r.identity = identity && inner.identity;
+        return r;
+    }
+    static rigid_transform translation(const vec3& offset) {
+        rigid_transform r;
+        r.t = offset;
+        r.identity = false;
+        return r;
+    }
+    // rotate_y's object-to-world rotation: x' = cos x + sin z, z' = -sin x + cos z.
+    static rigid_transform rotation_y(double sin_theta, double cos_theta) {
+        rigid_transform r;
+        r.m[0] = vec3(cos_theta, 0, sin_theta);
+        r.m[2] = vec3(-sin_theta, 0, cos_theta);
+        r.identity = false;
+        return r;
+    }
+};
+
 class scene_compiler {
   public:
     explicit scene_compiler(compiled_scene& out) : out_(out) {}
 
-    void add(const hittable& object) {
+    void add(const hittable& object, const rigid_transform& xf = {}) {
         const std::type_info& type = typeid(object);
         if (type == typeid(hittable_list)) {
             for (const auto& child : static_cast<const hittable_list&>(object).objects) {
                 if (!child) throw scene_error("hittable_list holds a null object");
-                add(*child);
+                add(*child, xf);
             }
         } else if (type == typeid(sphere)) {
-            add_sphere(static_cast<const sphere&>(object));
+            add_sphere(static_cast<const sphere&>(object), xf);
         } else if (type == typeid(triangle)) {
             const auto& t = static_cast<const triangle&>(object);
             if (!t.mat()) throw scene_error("triangle at " + point_text(t.a()) + " has no material");
             uint32_t m = material_index(t.mat().get());
-            if (!add_triangle(t.a(), t.b(), t.c(), m))
+            if (!add_triangle(xf.point(t.a()), xf.point(t.b()), xf.point(t.c()), m))
                 throw scene_error("triangle " + point_text(t.a()) + " " + point_text(t.b()) + " " + point_text(t.c()) +
                                   " has zero area");
+        } else if (type == typeid(quad)) {
+            add_quad(static_cast<const quad&>(object), xf);
         } else if (type == typeid(triangle_mesh)) {
-            add_mesh(static_cast<const triangle_mesh&>(object));
+            add_mesh(static_cast<const triangle_mesh&>(object), xf);
+        } else if ((type == typeid(translate) || type == typeid(rotate_y)) && built_in_only(object)) {
+            // A moved group of built-in shapes: moved here, once.
+            if (type == typeid(translate)) {
+                const auto& tr = static_cast<const translate&>(object);
+                if (!finite3(tr.offset())) throw scene_error("translate offset must be finite, got " + point_text(tr.offset()));
+                add(*tr.object(), xf.then(rigid_transform::translation(tr.offset())));
+            } else {
+                const auto& ro = static_cast<const rotate_y&>(object);
+                if (!(std::isfinite(ro.sin_theta()) && std::isfinite(ro.cos_theta())))
+                    throw scene_error("rotate_y angle must be finite, got " + std::to_string(ro.angle()));
+                add(*ro.object(), xf.then(rigid_transform::rotation_y(ro.sin_theta(), ro.cos_theta())));
+            }
         } else {
+            // A user's own hittable (or a transform over one): called through its virtual hit().
+            // Under a transform, the whole transform node is the user shape.
+            if (!xf.identity) throw scene_error("internal: a user shape under a flattened transform");
             add_user_shape(object);
         }
+    }
+
+    // Whether every shape under `object` is one the compiler lays out itself (so a transform over
+    // it can be applied to the shapes); a user's hittable anywhere below makes the transform node
+    // a user shape as a whole, rendered through its virtual hit().
+    static bool built_in_only(const hittable& object) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(hittable_list)) {
+            for (const auto& child : static_cast<const hittable_list&>(object).objects)
+                if (child && !built_in_only(*child)) return false;
+            return true;
+        }
+        if (type == typeid(translate)) {
+            const auto& child = static_cast<const translate&>(object).object();
+            return child && built_in_only(*child);
+        }
+        if (type == typeid(rotate_y)) {
+            const auto& child = static_cast<const rotate_y&>(object).object();
+            return child && built_in_only(*child);
+        }
+        return type == typeid(sphere) || type == typeid(triangle) || type == typeid(quad) ||
+               type == typeid(triangle_mesh);
     }
 
     // Builds the BVH and lays the primitives out in its leaf order.
@@ -93,6 +176,14 @@ class scene_compiler {
             box3f b;
             for (const vec3f& v : triangles_[i].v) b.grow(v);
             prims.push_back({b, shape_kind::triangle, uint32_t(i)});
+        }
+        for (size_t i = 0; i < quads_.size(); ++i) {
+            box3f b;
+            const quad_input& q = quads_[i];
+            for (const vec3& corner : {q.q, q.q + q.u, q.q + q.v, q.q + q.u + q.v})
+                b.grow({down(corner.x()), down(corner.y()), down(corner.z())}),
+                    b.grow({up(corner.x()), up(corner.y()), up(corner.z())});
+            prims.push_back({b, shape_kind::quad, uint32_t(i)});
         }
         for (size_t i = 0; i < user_shapes_.size(); ++i) prims.push_back({user_shapes_[i].bounds, shape_kind::user, uint32_t(i)});
         out_.bvh = build_bvh8(prims);
@@ -113,13 +204,24 @@ class scene_compiler {
         if (out_.triangles.count > 0)
             for (size_t k = 0; k < pad; ++k) push_triangle({{vec3f(), vec3f(), vec3f()}, 0});
 
+        const auto& quad_order = out_.bvh.order[size_t(shape_kind::quad)];
+        out_.quads.count = quad_order.size();
+        for (uint32_t i : quad_order) push_quad(quads_[i]);
+        if (out_.quads.count > 0)
+            for (size_t k = 0; k < pad; ++k) out_.quads.append_padding();
+
         for (uint32_t i : out_.bvh.order[size_t(shape_kind::user)]) out_.user_shapes.shapes.push_back(user_shapes_[i].shape);
+        find_lights();
     }
 
   private:
     struct sphere_input {
         vec3 c; // relative to the scene origin, in double
         double r;
+        uint32_t material;
+    };
+    struct quad_input {
+        vec3 q, u, v; // corner relative to the scene origin, and edges, in double
         uint32_t material;
     };
     struct triangle_input {
@@ -143,12 +245,12 @@ class scene_compiler {
         return index;
     }
 
-    void add_sphere(const sphere& s) {
+    void add_sphere(const sphere& s, const rigid_transform& xf) {
         if (!finite3(s.center())) throw scene_error("sphere centre must be finite, got " + point_text(s.center()));
         if (!(std::isfinite(s.radius()) && s.radius() > 0))
             throw scene_error("sphere radius must be positive and finite, got " + std::to_string(s.radius()));
         if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
-        vec3 c = s.center() - out_.origin;
+        vec3 c = xf.point(s.center()) - out_.origin;
         if (!(std::fmax(std::fabs(c.x()), std::fmax(std::fabs(c.y()), std::fabs(c.z()))) + s.radius() < max_float_extent))
             throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
                               " is out of single-precision range: its distance from the camera plus its radius must "
@@ -199,7 +301,78 @@ class scene_compiler {
         user_shapes_.push_back({&shape, b});
     }
 
-    void add_mesh(const triangle_mesh& mesh) {
+    void add_quad(const quad& q, const rigid_transform& xf) {
+        if (!finite3(q.corner()) || !finite3(q.edge_u()) || !finite3(q.edge_v()))
+            throw scene_error("quad corner and edges must be finite, got " + point_text(q.corner()) + " " +
+                              point_text(q.edge_u()) + " " + point_text(q.edge_v()));
+        if (!q.mat()) throw scene_error("quad at " + point_text(q.corner()) + " has no material");
+        const vec3 corner = xf.point(q.corner()) - out_.origin, u = xf.vector(q.edge_u()), v = xf.vector(q.edge_v());
+        for (const vec3& p : {corner, corner + u, corner + v, corner + u + v})
+            if (!(std::fmax(std::fabs(p.x()), std::fmax(std::fabs(p.y()), std::fabs(p.z()))) < max_float_extent))
+                throw scene_error("quad at " + point_text(q.corner()) +
+                                  " is out of single-precision range: it must be within 1e18 of the camera");
+        // Zero area in float: no ray could hit it, and its dual vectors would be infinite.
+        if (length_squared(cross(vec3f(u), vec3f(v))) == 0)
+            throw scene_error("quad at " + point_text(q.corner()) + " with edges " + point_text(q.edge_u()) + " " +
+                              point_text(q.edge_v()) + " has zero area");
+        quads_.push_back({corner, u, v, material_index(q.mat().get())});
+    }
+
+    void push_quad(const quad_input& q) {
+        const vec3 n = cross(q.u, q.v);
+        const vec3 w = n / dot(n, n);
+        out_.quads.append(vec3f(q.q), vec3f(q.u), vec3f(q.v), vec3f(n), vec3f(cross(q.v, w)), vec3f(cross(w, q.u)),
+                          q.material);
+    }
+
+    // Records every built-in shape whose material emits as a light, in the sets' final order.
+    void find_lights() {
+        light_set& lights = out_.lights;
+        auto emission = [&](uint32_t m) -> const compiled_material& { return out_.materials[m]; };
+        auto record = [&](shape_kind kind, size_t count, const std::vector<uint32_t>& material, auto make) {
+            std::vector<uint32_t>& table = lights.of_shape[size_t(kind)];
+            for (size_t i = 0; i < count; ++i) {
+                const compiled_material& m = emission(material[i]);
+                if (!m.emits()) continue;
+                if (table.empty()) table.assign(count, light_set::none);
+                light l = make(uint32_t(i));
+                l.emission = m.emission;
+                l.two_sided = m.two_sided;
+                table[i] = lights.add(l);
+            }
+        };
+        const sphere_set& sp = out_.spheres;
+        record(shape_kind::sphere, sp.count, sp.material, [&](uint32_t i) {
+            light l;
+            l.kind = light_kind::sphere;
+            l.p0 = {sp.x[i], sp.y[i], sp.z[i]};
+            l.radius = sp.r[i];
+            return l;
+        });
+        const quad_set& qs = out_.quads;
+        record(shape_kind::quad, qs.count, qs.material, [&](uint32_t i) {
+            light l;
+            l.kind = light_kind::quad;
+            l.p0 = qs.corner(i);
+            l.p1 = qs.edge_u(i);
+            l.p2 = qs.edge_v(i);
+            return l;
+        });
+        const triangle_set& ts = out_.triangles;
+        record(shape_kind::triangle, ts.count, ts.material, [&](uint32_t i) {
+            light l;
+            l.kind = light_kind::triangle;
+            auto vertex = [&](int k) {
+                return vec3f(ts.vertex[size_t(3 * k)][i], ts.vertex[size_t(3 * k + 1)][i], ts.vertex[size_t(3 * k + 2)][i]);
+            };
+            l.p0 = vertex(0);
+            l.p1 = vertex(1);
+            l.p2 = vertex(2);
+            return l;
+        });
+    }
+
+    void add_mesh(const triangle_mesh& mesh, const rigid_transform& xf) {
         if (!mesh.mat) throw scene_error("triangle mesh has no material");
         uint32_t m = material_index(mesh.mat.get());
         for (size_t i = 0; i < mesh.faces.size(); ++i) {
@@ -208,23 +381,24 @@ class scene_compiler {
                 if (v >= mesh.positions.size())
                     throw scene_error("triangle mesh face " + std::to_string(i) + " uses vertex " + std::to_string(v) +
                                       " of " + std::to_string(mesh.positions.size()));
-            if (!add_triangle(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]], m)) {
+            if (!add_triangle(xf.point(mesh.positions[f[0]]), xf.point(mesh.positions[f[1]]),
+                              xf.point(mesh.positions[f[2]]), m)) {
                 ++out_.triangles.degenerate;
                 continue;
             }
-            if (mesh.smooth_shading && i < mesh.face_normals.size()) set_vertex_normals(mesh, i);
+            if (mesh.smooth_shading && i < mesh.face_normals.size()) set_vertex_normals(mesh, i, xf);
         }
     }
 
     // A smooth mesh's triangle takes its corners' normals; a corner without a usable normal gets
     // the face normal.
-    void set_vertex_normals(const triangle_mesh& mesh, size_t face) {
+    void set_vertex_normals(const triangle_mesh& mesh, size_t face, const rigid_transform& xf) {
         triangle_input& t = triangles_.back();
         vec3f face_normal = vec3f(unit_vector(cross(t.v[1].to_double() - t.v[0].to_double(),
                                                     t.v[2].to_double() - t.v[0].to_double())));
         for (size_t k = 0; k < 3; ++k) {
             uint32_t index = mesh.face_normals[face][k];
-            vec3 n = index < mesh.normals.size() ? mesh.normals[index] : vec3(0, 0, 0);
+            vec3 n = index < mesh.normals.size() ? xf.vector(mesh.normals[index]) : vec3(0, 0, 0);
             double len = n.length();
             t.n[k] = finite3(n) && len > 0 ? vec3f(n / len) : face_normal;
         }
@@ -251,6 +425,7 @@ class scene_compiler {
     std::unordered_map<const material*, uint32_t> index_;
     std::vector<sphere_input> spheres_;
     std::vector<triangle_input> triangles_;
+    std::vector<quad_input> quads_;
     struct user_shape_input {
         const hittable* shape;
         box3f bounds; // relative to the origin
@@ -261,14 +436,29 @@ class scene_compiler {
 
 } // namespace detail
 
-inline compiled_scene compile_scene(const hittable& world, const point3& origin) {
+inline compiled_scene compile_scene(const hittable& world, const point3& origin,
+                                    const std::vector<point_light>& point_lights) {
     if (!finite3(origin)) throw scene_error("camera position must be finite, got " + point_text(origin));
     compiled_scene scene;
     scene.origin = origin;
     detail::scene_compiler compiler(scene);
     compiler.add(world);
     compiler.finish();
+    for (const point_light& p : point_lights) {
+        if (!finite3(p.position)) throw scene_error("point light position must be finite, got " + point_text(p.position));
+        check_color(p.intensity, "point light intensity");
+        light l;
+        l.kind = light_kind::point;
+        l.p0 = vec3f(p.position - origin);
+        l.emission = vec3f(p.intensity);
+        scene.lights.add(l);
+    }
+    scene.lights.finish();
     return scene;
+}
+
+inline compiled_scene compile_scene(const hittable& world, const point3& origin) {
+    return compile_scene(world, origin, {});
 }
 
 inline compiled_material compile_reported_material(const hit_record& rec) {

@@ -2,6 +2,7 @@
 // surface_hit: what the compiled scene's closest-hit query reports about the surface a ray meets.
 
 #include "../hittable.h"
+#include "leaf_query.h"
 #include "vec3f.h"
 
 #include <cstdint>
@@ -18,6 +19,8 @@ struct surface_hit {
     bool front_face = true;
     float offset = 0;      // extra push off the surface for spawned rays (the shape's own error)
     uint32_t material = 0; // index into compiled_scene::materials
+    shape_kind kind = shape_kind::sphere; // which shape was hit: its kind and index in its set
+    uint32_t index = 0;
     // Set when a user-written hittable was hit: its record, in world coordinates.
     const hittable* user_shape = nullptr;
     hit_record user_record;

@@ -49,6 +49,7 @@ struct user_shape_set {
 // Fills `hit` from the record a user's hittable `shape` reported (in world coordinates).
 inline void complete_user_hit(const hittable* shape, const hit_record& rec, const vec3& origin, surface_hit& hit) {
     hit.user_shape = shape;
+    hit.kind = shape_kind::user;
     if (&hit.user_record != &rec) hit.user_record = rec;
     hit.t = static_cast<float>(rec.t);
     hit.p = vec3f(rec.p - origin);

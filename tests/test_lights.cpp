@@ -1,0 +1,244 @@
+// Emitters and the path tracer's estimators against answers derived by hand:
+//   - a Lambertian floor of albedo A under a sphere light (radius r, radiance Le, centre at height
+//     d): the point right below reflects A Le (r/d)^2;
+//   - under a point light of intensity I at height d: A I / (pi d^2);
+//   - a quad light seen straight on: its radiance; from behind: nothing (one-sided), or its
+//     radiance again (two-sided);
+//   - a quad light seen through a glass slab (exact Fresnel, normal incidence): Le (1 - R)/(1 + R),
+//     R = ((n - 1)/(n + 1))^2, the sum over the slab's inner reflections;
+//   - a closed room: a sphere of albedo a around a sphere light: every wall point has the radiance
+//     a Le s / (1 - a (1 - s)), s = (r/R)^2 (see the furnace test below);
+// and the three estimators (nee, bsdf, mixture) agree with each other and with those answers
+// within statistical bounds; Russian roulette leaves the mean unchanged.
+//
+// Each case renders a small image whose pixels all see (nearly) the same point, so the pixels
+// are independent estimates of one value: their mean is compared with the answer within a few
+// standard errors computed from their spread.
+
+#include <rtweekend/rtweekend.h>
+
+#include <doctest/doctest.h>
+
+#include "light_scenes.h"
+#include "test_helpers.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace rt;
+
+namespace {
+
+constexpr double pi_d = 3.14159265358979323846;
+
+struct pixel_stats {
+    double mean = 0, standard_error = 0;
+};
+
+// The mean over the pixels of channel 0 and its standard error.
+pixel_stats channel_stats(const image& img) {
+    std::vector<double> v;
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) v.push_back(img.pixel(x, y).x());
+    double sum = 0, sum2 = 0;
+    for (double x : v) sum += x;
+    const double mean = sum / double(v.size());
+    for (double x : v) sum2 += (x - mean) * (x - mean);
+    return {mean, std::sqrt(sum2 / double(v.size() - 1) / double(v.size()))};
+}
+
+// A camera at `from` looking at `at` through so narrow a field of view that every pixel sees
+// `at` (to a few parts in a million of the distance).
+camera pinpoint_camera(point3 from, point3 at, vec3 up, int size, int spp, path_estimator e) {
+    camera cam = test::test_camera(size, size, spp, 50);
+    cam.lookfrom = from;
+    cam.lookat = at;
+    cam.vup = up;
+    cam.vfov = 1e-4;
+    cam.background = color(0, 0, 0);
+    cam.estimator = e;
+    return cam;
+}
+
+const path_estimator all_estimators[] = {path_estimator::nee, path_estimator::bsdf, path_estimator::mixture};
+
+// Checks that the render's mean matches `expected` within 4.5 standard errors (plus a relative
+// 1e-4 for float arithmetic).
+void check_mean(const image& img, double expected, const std::string& what) {
+    pixel_stats s = channel_stats(img);
+    INFO(what << ": mean " << s.mean << " +- " << s.standard_error << ", expected " << expected);
+    CHECK(std::fabs(s.mean - expected) <= 4.5 * s.standard_error + 1e-4 * expected);
+}
+
+} // namespace
+
+TEST_CASE("sphere light over a Lambertian floor: A Le (r/d)^2 right below, every estimator") {
+    const double A = 0.6, Le = 5.0, r = 0.5, d = 3.0;
+    hittable_list world;
+    world.add(make_shared<quad>(point3(-100, 0, -100), vec3(0, 0, 200), vec3(200, 0, 0),
+                                make_shared<lambertian>(color(A, A, A))));
+    world.add(make_shared<sphere>(point3(0, d, 0), r, make_shared<diffuse_light>(color(Le, Le, Le))));
+    const double expected = A * Le * (r / d) * (r / d);
+    for (path_estimator e : all_estimators) {
+        INFO("estimator " << estimator_name(e));
+        camera cam = pinpoint_camera(point3(10, 1, 0), point3(0, 0, 0), vec3(0, 1, 0), 24, 64, e);
+        check_mean(test::render_checked(cam, world).img, expected, estimator_name(e));
+    }
+}
+
+TEST_CASE("point light over a Lambertian floor: A I / (pi d^2), found by light sampling") {
+    const double A = 0.5, I = 40.0, d = 2.0;
+    hittable_list world;
+    world.add(make_shared<quad>(point3(-100, 0, -100), vec3(0, 0, 200), vec3(200, 0, 0),
+                                make_shared<lambertian>(color(A, A, A))));
+    const std::vector<point_light> lights{{point3(0, d, 0), color(I, I, I)}};
+    const double expected = A * I / (pi_d * d * d);
+    for (path_estimator e : {path_estimator::nee, path_estimator::mixture}) {
+        camera cam = pinpoint_camera(point3(10, 1, 0), point3(0, 0, 0), vec3(0, 1, 0), 16, 16, e);
+        render_result r = render(cam, world, lights);
+        check_mean(r.img, expected, estimator_name(e));
+        // The direct light of a point light has no variance here: every sample is the same.
+        CHECK(channel_stats(r.img).mean == doctest::Approx(expected).epsilon(1e-4));
+    }
+    // Material sampling alone can never hit a point: the bsdf estimator sees none of its light.
+    camera cam = pinpoint_camera(point3(10, 1, 0), point3(0, 0, 0), vec3(0, 1, 0), 8, 8, path_estimator::bsdf);
+    CHECK(channel_stats(render(cam, world, lights).img).mean == 0.0);
+}
+
+TEST_CASE("quad light seen straight on: its radiance from the front, one- or two-sided from behind") {
+    const color Le(3, 2, 1);
+    for (bool two_sided : {false, true}) {
+        hittable_list world;
+        // Normal u x v = (1,0,0) x (0,1,0) = +z: the front face looks towards +z.
+        world.add(make_shared<quad>(point3(-1, -1, 0), vec3(2, 0, 0), vec3(0, 2, 0), make_shared<diffuse_light>(Le, two_sided)));
+        for (path_estimator e : all_estimators) {
+            camera front = pinpoint_camera(point3(0, 0, 5), point3(0, 0, 0), vec3(0, 1, 0), 4, 4, e);
+            image img = test::render_checked(front, world).img;
+            CHECK(img.pixel(1, 1).x() == doctest::Approx(3.0f));
+            CHECK(img.pixel(2, 2).y() == doctest::Approx(2.0f));
+            CHECK(img.pixel(3, 0).z() == doctest::Approx(1.0f));
+            camera back = pinpoint_camera(point3(0, 0, -5), point3(0, 0, 0), vec3(0, 1, 0), 4, 4, e);
+            CHECK(test::render_checked(back, world).img.pixel(1, 1).x() == doctest::Approx(two_sided ? 3.0f : 0.0f));
+        }
+    }
+}
+
+TEST_CASE("a quad light through a glass slab: Le (1 - R)/(1 + R) at normal incidence") {
+    const double n = 1.5, Le = 2.0;
+    const double R = (n - 1) * (n - 1) / ((n + 1) * (n + 1));
+    hittable_list world;
+    // A slab 0.2 thick, 200 wide, of exact-Fresnel glass, under a large light facing down.
+    world.add(box(point3(-100, -0.1, -100), point3(100, 0.1, 100), make_shared<dielectric>(n, color(0, 0, 0))));
+    world.add(make_shared<quad>(point3(-100, 10, -100), vec3(200, 0, 0), vec3(0, 0, 200),
+                                make_shared<diffuse_light>(color(Le, Le, Le))));
+    const double expected = Le * (1 - R) / (1 + R);
+    for (path_estimator e : all_estimators) {
+        camera cam = pinpoint_camera(point3(0, -5, 0), point3(0, 10, 0), vec3(1, 0, 0), 24, 64, e);
+        check_mean(test::render_checked(cam, world).img, expected, estimator_name(e));
+    }
+}
+
+// A closed room: a sphere of radius R and albedo a (seen from inside) around a one-sided sphere
+// light of radius r and radiance Le at its centre. By symmetry every wall point has the same
+// radiance L. The light sends P = pi Le 4 pi r^2 to the walls: irradiance P / (4 pi R^2) =
+// pi Le s, s = (r/R)^2. The walls light each other with pi L, less the part the light sphere
+// hides (it absorbs what reaches it): from a wall point it fills a cone of sin^2 = s, which
+// receives the fraction s of a cosine-weighted hemisphere. So L = a/pi (pi Le s + pi L (1 - s)),
+// L = a Le s / (1 - a (1 - s)). An estimator that gained energy would exceed it.
+struct closed_room {
+    hittable_list world;
+    double expected; // the radiance of every wall point
+};
+
+closed_room make_closed_room(double a) {
+    const double R = 10, r = 3, Le = 4;
+    const double s = (r / R) * (r / R);
+    closed_room room{{}, a * Le * s / (1 - a * (1 - s))};
+    room.world.add(make_shared<sphere>(point3(0, 0, 0), R, make_shared<lambertian>(color(a, a, a))));
+    room.world.add(make_shared<sphere>(point3(0, 0, 0), r, make_shared<diffuse_light>(color(Le, Le, Le))));
+    return room;
+}
+
+TEST_CASE("furnace with an emitter: a closed room converges to a Le s / (1 - a (1 - s))") {
+    const closed_room room = make_closed_room(0.7);
+    const hittable_list& world = room.world;
+    const double expected = room.expected;
+    for (path_estimator e : all_estimators) {
+        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, 64, e);
+        cam.max_depth = 200; // a^200: no light lost to the bounce limit
+        check_mean(test::render_checked(cam, world).img, expected, estimator_name(e));
+    }
+}
+
+// The three estimators on the book-3 Cornell box: the same image, pixel by pixel, within the
+// noise each has (estimated from independent renders with different seeds).
+TEST_CASE("nee, bsdf and mixture converge to the same Cornell box") {
+    light_scene scene = make_cornell_final();
+    constexpr int size = 12, seeds = 10, spp = 32;
+    struct moments {
+        std::vector<double> sum, sum2;
+    };
+    auto run = [&](path_estimator e) {
+        moments m{std::vector<double>(size * size, 0.0), std::vector<double>(size * size, 0.0)};
+        for (int k = 0; k < seeds; ++k) {
+            camera cam = scene.cam;
+            cam.image_width = size;
+            cam.samples_per_pixel = spp;
+            cam.quiet = true;
+            cam.threads = 2;
+            cam.seed = uint64_t(1000 * int(e) + k);
+            cam.estimator = e;
+            image img = test::render_checked(cam, scene.world).img;
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x) {
+                    color c = img.pixel(x, y);
+                    double v = (c.x() + c.y() + c.z()) / 3;
+                    m.sum[size_t(y * size + x)] += v;
+                    m.sum2[size_t(y * size + x)] += v * v;
+                }
+        }
+        return m;
+    };
+    const moments nee = run(path_estimator::nee), bsdf = run(path_estimator::bsdf), mix = run(path_estimator::mixture);
+    auto compare = [&](const moments& p, const moments& q, const std::string& what) {
+        double total_p = 0, total_q = 0, var_total = 0;
+        int outliers = 0;
+        for (size_t i = 0; i < p.sum.size(); ++i) {
+            auto mean_var = [&](const moments& m, double& mean, double& var) {
+                mean = m.sum[i] / seeds;
+                var = std::fmax(0.0, (m.sum2[i] / seeds - mean * mean)) * seeds / (seeds - 1) / seeds;
+            };
+            double mp, vp, mq, vq;
+            mean_var(p, mp, vp);
+            mean_var(q, mq, vq);
+            total_p += mp;
+            total_q += mq;
+            var_total += vp + vq;
+            if (std::fabs(mp - mq) > 5 * std::sqrt(vp + vq) + 1e-6) ++outliers;
+        }
+        INFO(what << ": image means " << total_p / p.sum.size() << " and " << total_q / q.sum.size() << ", "
+                  << outliers << " pixels beyond 5 standard errors");
+        // Ten renders per estimator give rough standard errors, and caustic paths heavy tails:
+        // allow a few pixels out of 144.
+        CHECK(outliers <= 5);
+        CHECK(std::fabs(total_p - total_q) <= 4 * std::sqrt(var_total));
+    };
+    compare(nee, bsdf, "nee vs bsdf");
+    compare(nee, mix, "nee vs mixture");
+}
+
+TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it agree in a bright furnace") {
+    // Albedo 0.9 makes paths long, so roulette decides most of them; bsdf (no roulette, no light
+    // sampling) is the reference, on the same closed room as above.
+    const closed_room room = make_closed_room(0.9);
+    const hittable_list& world = room.world;
+    const double expected = room.expected;
+    camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, 128, path_estimator::nee);
+    cam.max_depth = 400;
+    render_result r_nee = test::render_checked(cam, world);
+    check_mean(r_nee.img, expected, "nee (roulette)");
+    cam.estimator = path_estimator::bsdf;
+    render_result r_bsdf = test::render_checked(cam, world);
+    check_mean(r_bsdf.img, expected, "bsdf (no roulette)");
+}
