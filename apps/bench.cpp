@@ -154,7 +154,8 @@ bench_options parse(int argc, char** argv) {
     if (modes != 1)
         usage("give exactly one of --scene, --mesh with --rays or --make-rays, --scaling, --user-shapes, or --error");
     if (!o.error_ref.empty() && o.scene.empty()) usage("--error needs --scene");
-    if (!o.estimators.empty() && o.error_ref.empty()) usage("--estimators goes with --error");
+    if (!o.estimators.empty() && o.scene.empty()) usage("--estimators goes with --scene (one: render with it) or --error");
+    if (o.estimators.size() > 1 && o.error_ref.empty()) usage("several --estimators go with --error");
     if (o.book_seconds.has_value() != o.book_rmse8.has_value()) usage("--book-seconds and --book-rmse8 go together");
     if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
     if (!o.rays.empty() && !o.make_rays.empty()) usage("--rays and --make-rays are separate runs");
@@ -189,6 +190,7 @@ void bench_scene(const bench_options& o) {
     }
     if (o.spp) cam.samples_per_pixel = *o.spp;
     if (o.depth) cam.max_depth = *o.depth;
+    if (!o.estimators.empty()) cam.estimator = o.estimators[0];
     cam.threads = o.threads;
     cam.quiet = true;
 
@@ -544,13 +546,15 @@ void bench_error(const bench_options& o) {
     if (!o.estimators.empty()) {
         std::vector<double> medians;
         for (rt::path_estimator e : o.estimators) {
-            std::vector<double> eff;
+            std::vector<double> eff, eff8;
             for (const error_point& p : points)
-                if (p.mode == rt::estimator_name(e) && p.spp >= 16)
+                if (p.mode == rt::estimator_name(e) && p.spp >= 16) {
                     eff.push_back(1.0 / (p.linear.rmse * p.linear.rmse * p.seconds));
+                    eff8.push_back(1.0 / (p.display.rmse * p.display.rmse * p.seconds));
+                }
             medians.push_back(eff.empty() ? 0.0 : median(eff));
-            std::printf("estimator %s: efficiency 1/(MSE*s) %.4g (median over spp >= 16)\n", rt::estimator_name(e),
-                        medians.back());
+            std::printf("estimator %s: efficiency 1/(MSE*s) %.4g linear, %.4g in 8-bit (medians over spp >= 16)\n",
+                        rt::estimator_name(e), medians.back(), eff8.empty() ? 0.0 : median(eff8));
         }
         for (size_t i = 1; i < medians.size(); ++i)
             if (medians[i] > 0)

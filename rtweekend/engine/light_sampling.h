@@ -9,7 +9,7 @@
 //   sample_quad_light / quad_light_pdf          spherical rectangles or area, chosen alike by both
 //     sample_quad_area / quad_area_pdf          uniform by area
 //     sample_quad_solid_angle /                 uniform by solid angle over a rectangle: Urena,
-//     quad_solid_angle_pdf, quad_solid_angle    Cazorla and Heitz, "An Area-Preserving
+//     quad_solid_angle_pdf, quad_solid_angle    Fajardo and King, "An Area-Preserving
 //                                               Parametrization for Spherical Rectangles", EGSR 2013
 //   sample_triangle_light / triangle_light_pdf  uniform by area: Heitz, "A Low-Distortion Map
 //                                               Between Triangle and Square", 2019
@@ -163,7 +163,7 @@ inline float density_from_measure(float measure) {
     return measure > 0 && std::isfinite(pdf) ? pdf : 0.0f;
 }
 
-// Urena, Cazorla and Heitz's spherical rectangle, in a frame with x along u, y along v's part
+// Urena, Fajardo and King's spherical rectangle, in a frame with x along u, y along v's part
 // across u, and z the normal turned away from p, so that the rectangle is the plane z = z0 < 0
 // seen from p at the origin, spanning [x0, x1] x [y0, y1].
 struct spherical_rectangle {

@@ -55,31 +55,37 @@ inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax) {
 
 inline bool is_black(const vec3f& c) { return !(c.x > 0 || c.y > 0 || c.z > 0); }
 
-// Paths longer than this many scattering events face Russian roulette (nee only): a path whose
-// throughput has fallen to q (its largest channel) goes on with probability q and is weighed by
-// 1/q when it does, so the mean is unchanged (Arvo and Kirk 1990; pbrt, 4th ed., 14.1.5).
-inline constexpr int roulette_depth = 3;
+// Russian roulette (nee only): past a number of scattering events, a path whose throughput has
+// fallen to q (its largest channel) goes on with probability q and is weighed by 1/q when it does,
+// so the mean is unchanged (Arvo and Kirk 1990; pbrt, 4th ed., 14.1.5). It starts after two
+// events in a scene with emitters (closed rooms, long paths: on book 3's Cornell box, 1.26x the
+// efficiency of starting after five) and after five in a scene lit by the sky alone (paths escape
+// soon; starting after three cost the cover scene 5 % of its efficiency). BENCHMARKS.md, section 6.
+inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 : 2; }
 
 // The material at a path vertex, as the estimators ask it: a built-in material through the
 // contract (bsdf.h), a user's through its virtual functions (user_material.h).
+template <bool UserMaterials>
 struct vertex_material {
     const compiled_material& m;
     shading_point sp;
     vec3f wo;
     const user_material_hit* user; // set for a user's material, which has scattered already
 
-    bool has_density() const { return user ? user->has_density() : m.has_non_delta_lobe(); }
-    vec3f eval(const vec3f& wi) const { return user ? user->eval(wi) : m.eval(wo, wi, sp); }
-    float pdf(const vec3f& wi) const { return user ? user->pdf(wi) : m.pdf(wo, wi, sp); }
-    bool sample(pcg32& rng, material_sample& s) const { return user ? user->sample(s) : m.sample(wo, sp, rng, s); }
+    bool is_user() const { return UserMaterials && user; }
+    bool has_density() const { return is_user() ? user->has_density() : m.has_non_delta_lobe(); }
+    vec3f eval(const vec3f& wi) const { return is_user() ? user->eval(wi) : m.eval(wo, wi, sp); }
+    float pdf(const vec3f& wi) const { return is_user() ? user->pdf(wi) : m.pdf(wo, wi, sp); }
+    bool sample(pcg32& rng, material_sample& s) const { return is_user() ? user->sample(s) : m.sample(wo, sp, rng, s); }
 };
 
 // One path from the camera, estimated with E: the radiance it carries. Materials see the
 // geometric normal (the path tracer does not use smooth shading normals).
-template <path_estimator E>
+template <path_estimator E, bool UserMaterials>
 vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pcg32& rng,
                  uint64_t& rays) {
     const light_set& lights = scene.lights;
+    const int roulette_start = roulette_depth(lights);
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
     surface_hit hit;
     std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
@@ -121,12 +127,12 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
         // A user's material: its own emission, counted in full (it is not light-sampled), then
         // its scatter(), asked once.
         std::optional<user_material_hit> user;
-        if (m.kind == material_kind::user) {
+        if (UserMaterials && m.kind == material_kind::user) {
             user.emplace(scene, *m.source, r, hit);
             radiance += throughput * user->emitted();
             if (!user->scatter()) return radiance;
         }
-        const vertex_material vm{m, sp, wo, user ? &*user : nullptr};
+        const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr};
         const bool has_density = vm.has_density();
 
         // Next-event estimation: a point on a light, and a shadow ray to it.
@@ -185,7 +191,7 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
         last_p = hit.p;
         last_pdf = s.pdf;
 
-        if (E == path_estimator::nee && depth >= roulette_depth) {
+        if (E == path_estimator::nee && depth >= roulette_start) {
             const float q = max_component(throughput);
             if (q < 1.0f) {
                 if (!(rng.next_float() < q)) return radiance;
@@ -221,9 +227,9 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
                     // User-written shapes and materials may call random_double(): give them this
                     // sample's generator so the image stays deterministic.
                     detail::scoped_sample_rng guard(rng);
-                    return detail::trace_path<E>(scene, env, r, max_depth, rng, rays);
+                    return detail::trace_path<E, true>(scene, env, r, max_depth, rng, rays);
                 }
-                return detail::trace_path<E>(scene, env, r, max_depth, rng, rays);
+                return detail::trace_path<E, false>(scene, env, r, max_depth, rng, rays);
             },
             start);
     };
