@@ -135,33 +135,28 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
         const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr};
         const bool has_density = vm.has_density();
 
+        // A light sample's contribution, if its shadow ray is clear: f Le / pdf, weighed by the
+        // power heuristic against material sampling (a point light has no rival strategy).
+        auto add_light_sample = [&](const light_choice& lc) {
+            if (is_black(lc.radiance)) return;
+            const vec3f f = vm.eval(lc.wi);
+            if (is_black(f)) return;
+            ++rays;
+            if (scene.occluded(spawn_ray(hit, lc.wi, lc.distance * (1.0f - 1e-4f)))) return;
+            const float weight = !lc.delta ? power_heuristic(lc.pdf, vm.pdf(lc.wi)) : 1.0f;
+            radiance += throughput * f * lc.radiance * (weight / lc.pdf);
+        };
+
         // Next-event estimation: a point on a light, and a shadow ray to it.
         if (E == path_estimator::nee && !lights.empty() && has_density) {
             light_choice lc;
-            if (lights.sample(hit.p, rng, lc) && !is_black(lc.radiance)) {
-                const vec3f f = vm.eval(lc.wi);
-                if (!is_black(f)) {
-                    ++rays;
-                    if (!scene.occluded(spawn_ray(hit, lc.wi, lc.distance * (1.0f - 1e-4f)))) {
-                        const float weight = lc.delta ? 1.0f : power_heuristic(lc.pdf, vm.pdf(lc.wi));
-                        radiance += throughput * f * lc.radiance * (weight / lc.pdf);
-                    }
-                }
-            }
+            if (lights.sample(hit.p, rng, lc)) add_light_sample(lc);
         }
-
         // The mixture below covers area lights only; a point light, which no direction can hit,
         // is sampled on its own (next-event estimation without a second strategy to weigh).
         if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
             light_choice lc;
-            if (lights.sample_point(hit.p, rng, lc)) {
-                const vec3f f = vm.eval(lc.wi);
-                if (!is_black(f) && !is_black(lc.radiance)) {
-                    ++rays;
-                    if (!scene.occluded(spawn_ray(hit, lc.wi, lc.distance * (1.0f - 1e-4f))))
-                        radiance += throughput * f * lc.radiance * (1.0f / lc.pdf);
-                }
-            }
+            if (lights.sample_point(hit.p, rng, lc)) add_light_sample(lc);
         }
 
         material_sample s;
