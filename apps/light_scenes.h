@@ -17,14 +17,14 @@ struct light_scene {
 };
 
 // Book 2's "simple light": a sphere on the ground lit by a sphere light and a quad light, in the
-// dark. Book 2's diffuse_light emits from both faces, so these lights do (two_sided = true). The
-// book covers both spheres with its marble noise texture; until textures arrive they are grey.
+// dark. Book 2's diffuse_light emits from both faces, so these lights do (two_sided = true). Both
+// spheres wear the book's marble noise texture.
 inline light_scene make_simple_light() {
     using namespace rt;
     light_scene s;
-    auto ground = make_shared<lambertian>(color(0.5, 0.5, 0.5));
-    s.world.add(make_shared<sphere>(point3(0, -1000, 0), 1000, ground));
-    s.world.add(make_shared<sphere>(point3(0, 2, 0), 2, ground));
+    auto pertext = make_shared<noise_texture>(4);
+    s.world.add(make_shared<sphere>(point3(0, -1000, 0), 1000, make_shared<lambertian>(pertext)));
+    s.world.add(make_shared<sphere>(point3(0, 2, 0), 2, make_shared<lambertian>(pertext)));
 
     auto difflight = make_shared<diffuse_light>(color(4, 4, 4), /*two_sided=*/true);
     s.world.add(make_shared<sphere>(point3(0, 7, 0), 2, difflight));

@@ -243,10 +243,11 @@ image camera::render_image(const hittable& world, RayColor ray_color) const {
     return render_samples(
                f.width, f.height, s,
                [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-                   ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng);
+                   // Every ray has a time, as in book 2: the shader's world may move.
+                   ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng, /*with_time=*/true);
                    ++rays;
                    detail::scoped_sample_rng guard(rng); // ray_color may call random_double()
-                   color c = ray_color(ray(f.position + r.origin.to_double(), r.dir.to_double()), world);
+                   color c = ray_color(ray(f.position + r.origin.to_double(), r.dir.to_double(), r.time), world);
                    return vec3f(c);
                },
                start)

@@ -14,6 +14,17 @@
 //   dielectric(refraction_index, absorption)
 //                                glass that reflects with the exact Fresnel probability and,
 //                                inside, keeps exp(-absorption * distance) per channel (Beer's law)
+// book 2's phase function, for constant_medium (constant_medium.h):
+//   isotropic(albedo)            scatters uniformly over all directions; isotropic(texture) too
+// and two glossy surfaces, with a density that light sampling can weigh (formulas in bsdf.h):
+//   plastic(diffuse, refraction_index = 1.5)
+//                                a Lambertian base under a smooth clear coat: the coat's mirror
+//                                reflection, Fresnel-weighted, over the base; a white plastic
+//                                reflects everything it receives
+//   blinn_phong(diffuse, specular, exponent)
+//                                a Lambertian lobe plus a normalised Blinn-Phong glossy lobe (the
+//                                CENG795 course's surface); diffuse + specular is scaled down to 1
+//                                per channel where it exceeds it, so no energy is created
 //
 // Each material's physics is written once, in the renderer's material contract (engine/bsdf.h:
 // sample, eval, pdf), which every integrator calls. The renderer recognises these classes and
@@ -43,6 +54,7 @@
 #include "ray.h"
 #include "texture.h"
 
+#include <cmath>
 #include <memory>
 
 namespace rt {
@@ -153,8 +165,8 @@ class lambertian : public material {
     }
 
     // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
-    // Complete only when the texture is a solid_color; any other texture is rendered through the
-    // virtual functions above.
+    // For a texture other than a solid_color the scene compiler adds the texture's index into
+    // the scene's texture table (engine/texture_table.h); the albedo is looked up per hit.
     compiled_material compiled() const {
         compiled_material m;
         m.kind = material_kind::lambertian;
@@ -323,14 +335,141 @@ class diffuse_light : public material {
     bool two_sided_ = false;
 };
 
+// Book 2's phase function: light scattered at a point of a constant_medium leaves in a uniformly
+// random direction, attenuated by the albedo. A material like any other: on a surface it scatters
+// to both sides alike.
+class isotropic : public material {
+  public:
+    isotropic(const color& albedo) : tex_(std::make_shared<solid_color>(albedo)), albedo_(albedo), solid_(true) {}
+    isotropic(std::shared_ptr<texture> tex) : tex_(std::move(tex)) {
+        if (const solid_color* solid = exact_solid_color(tex_.get())) {
+            albedo_ = solid->albedo();
+            solid_ = true;
+        }
+    }
+
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        compiled_material m = compiled();
+        if (!solid_) m.albedo = vec3f(tex_->value(rec.u, rec.v, rec.p));
+        return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
+    }
+
+    // Book 3: uniform over the sphere of directions, density 1 / (4 pi).
+    bool scatter(const ray& /*r_in*/, const hit_record& rec, scatter_record& srec) const override {
+        srec.attenuation = tex_->value(rec.u, rec.v, rec.p);
+        srec.pdf_ptr = std::make_shared<sphere_pdf>();
+        srec.skip_pdf = false;
+        return true;
+    }
+
+    double scattering_pdf(const ray& /*r_in*/, const hit_record& /*rec*/, const ray& /*scattered*/) const override {
+        return 1 / (4 * pi);
+    }
+
+    // Complete only when the texture is a solid_color; any other texture is rendered through the
+    // virtual functions above (the medium reports the material at its own hit, which the texture
+    // table does not reach).
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = material_kind::isotropic;
+        m.albedo = vec3f(albedo_);
+        m.source = this;
+        return m;
+    }
+
+    const color& albedo() const { return albedo_; }
+    const std::shared_ptr<texture>& tex() const { return tex_; }
+
+  private:
+    std::shared_ptr<texture> tex_;
+    color albedo_{0, 0, 0};
+    bool solid_ = false; // tex_ is exactly a solid_color, of colour albedo_
+};
+
+// A diffuse base of colour `diffuse` under a smooth dielectric coat of index refraction_index (in
+// air): the coat mirrors F(cos) of the light (Fresnel), the base returns diffuse (1 - F(cos)) of it
+// (bsdf.h, plastic_base_factor). Varnished wood, plastic toys, glazed pottery.
+class plastic : public material {
+  public:
+    plastic(const color& diffuse, double refraction_index = 1.5)
+        : diffuse_(diffuse), refraction_index_(refraction_index),
+          coat_average_(std::isfinite(refraction_index) && refraction_index > 0 ? fresnel_average(refraction_index) : 0) {}
+
+    using material::scatter;
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    compiled_material compiled() const {
+        compiled_material m;
+        m.kind = material_kind::plastic;
+        m.albedo = vec3f(diffuse_);
+        m.refraction_index = static_cast<float>(refraction_index_);
+        m.coat_average = static_cast<float>(coat_average_);
+        m.source = this;
+        return m;
+    }
+
+    const color& diffuse() const { return diffuse_; }
+    double refraction_index() const { return refraction_index_; }
+
+  private:
+    color diffuse_;
+    double refraction_index_;
+    double coat_average_; // the coat's mean reflectance of diffuse light, computed once
+};
+
+// Lambertian reflectance `diffuse` plus a glossy Blinn-Phong lobe of reflectance `specular` and
+// Phong exponent `exponent` (higher: sharper highlights), normalised so that it never reflects
+// more than `specular` (bsdf.h, blinn_phong_lobe). Where diffuse + specular exceeds 1 in a
+// channel both are scaled by 1 / (diffuse + specular) there, so the surface creates no energy.
+class blinn_phong : public material {
+  public:
+    blinn_phong(const color& diffuse, const color& specular, double exponent)
+        : diffuse_(diffuse), specular_(specular), exponent_(exponent) {}
+
+    using material::scatter;
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    compiled_material compiled() const { return contract(diffuse_, specular_, exponent_, this); }
+
+    // The contract's entry for these parameters, scaled down to conserve energy (also used by
+    // whitted_material for the course's Blinn-Phong surfaces).
+    static compiled_material contract(const color& diffuse, const color& specular, double exponent,
+                                      const material* source) {
+        compiled_material m;
+        m.kind = material_kind::blinn_phong;
+        const color sum = diffuse + specular;
+        const color scale(sum.x() > 1 ? 1 / sum.x() : 1, sum.y() > 1 ? 1 / sum.y() : 1, sum.z() > 1 ? 1 / sum.z() : 1);
+        m.albedo = vec3f(diffuse * scale);
+        m.specular = vec3f(specular * scale);
+        m.exponent = static_cast<float>(exponent);
+        m.source = source;
+        return m;
+    }
+
+    const color& diffuse() const { return diffuse_; }
+    const color& specular() const { return specular_; }
+    double exponent() const { return exponent_; }
+
+  private:
+    color diffuse_, specular_;
+    double exponent_;
+};
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::conductor;
 using rt::dielectric;
 using rt::diffuse_light;
+using rt::blinn_phong;
+using rt::isotropic;
 using rt::lambertian;
 using rt::material;
 using rt::metal;
+using rt::plastic;
 using rt::scatter_record;
 #endif

@@ -33,8 +33,29 @@ class triangle_mesh : public hittable {
     std::vector<std::array<uint32_t, 3>> face_normals, face_uvs;
     std::shared_ptr<material> mat;
     // Shade with the normals interpolated across each triangle (barycentrically) instead of the
-    // flat geometric normal. Needs normals and face_normals. Used by the Whitted renderer.
+    // flat geometric normal. Needs normals and face_normals (from the file, or
+    // compute_vertex_normals()). Both renderers use them; the path tracer's rule for where they
+    // disagree with the triangles is in engine/path_tracer.h (vertex_material).
     bool smooth_shading = false;
+
+    // Gives every vertex the area-weighted mean of its faces' normals (each face's cross product,
+    // whose length is twice its area), replacing any normals the mesh had, and turns smooth
+    // shading on. A vertex whose faces cancel out keeps no normal: its corners fall back to the
+    // face normal when rendered.
+    void compute_vertex_normals() {
+        normals.assign(positions.size(), vec3(0, 0, 0));
+        for (const auto& f : faces) {
+            if (f[0] >= positions.size() || f[1] >= positions.size() || f[2] >= positions.size()) continue;
+            const vec3 n = cross(positions[f[1]] - positions[f[0]], positions[f[2]] - positions[f[0]]);
+            for (uint32_t v : f) normals[v] += n;
+        }
+        for (vec3& n : normals) {
+            const double len = n.length();
+            n = len > 0 ? n / len : vec3(0, 0, 0);
+        }
+        face_normals = faces;
+        smooth_shading = true;
+    }
 
     triangle_mesh() = default;
     triangle_mesh(std::vector<point3> positions, std::vector<std::array<uint32_t, 3>> faces,
@@ -65,8 +86,21 @@ class triangle_mesh : public hittable {
             rec.p = bary[0] * a + bary[1] * b + bary[2] * c;
             rec.set_face_normal(r, unit_vector(cross(b - a, c - a)));
             rec.mat = mat;
+            set_uv(size_t(&f - faces.data()), bary, rec);
         }
         return found;
+    }
+  private:
+    // The hit's texture coordinates: the corners' uv weighted barycentrically; 0 without uv.
+    void set_uv(size_t face, const double bary[3], hit_record& rec) const {
+        rec.u = rec.v = 0;
+        if (face >= face_uvs.size()) return;
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t i = face_uvs[face][k];
+            if (i >= uvs.size()) continue;
+            rec.u += bary[k] * uvs[i][0];
+            rec.v += bary[k] * uvs[i][1];
+        }
     }
 };
 

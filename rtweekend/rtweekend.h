@@ -20,6 +20,8 @@
 #include "texture.h"   // book 2
 #include "quad.h"
 #include "transform.h"
+#include "bvh.h"
+#include "constant_medium.h"
 #include "onb.h"       // book 3
 #include "pdf.h"
 #include "triangle.h"
@@ -29,8 +31,8 @@
 #include "scene_error.h"
 
 // The engine underneath (the compiled scene and its compiler, the integrators), and the file
-// formats. Not included here: io/image_read.h, measure/metrics.h and io/ray_file.h, which compile
-// stb_image's decoders or serve the measuring tools only.
+// formats. Not included here: io/image_read.h, measure/metrics.h and io/ray_file.h, which serve
+// the measuring tools only.
 #include "engine/scene_compiler.h"
 #include "engine/path_tracer.h"
 #include "engine/whitted.h"

@@ -3,6 +3,12 @@
 // rec.v from get_sphere_uv) and book 3's light sampling (pdf_value, random: the cone of
 // directions towards the sphere).
 //
+// sphere(center1, center2, radius, material): book 2's moving sphere, for motion blur. Its centre
+// travels in a straight line from center1 at time 0 to center2 at time 1, and a ray meets it
+// where it is at the ray's time(); its bounding box covers the whole motion (the box around the
+// boxes at both ends). As in the book the centre is kept as a ray, centre(t) = center1 + t
+// (center2 - center1), and a still sphere is one whose centre does not move.
+//
 // The ray-sphere test uses the numerically stable form of Haines, Guenther and Akenine-Moller,
 // "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7): the
 // discriminant is computed from the distance of the centre to the ray's line, and the near root
@@ -48,12 +54,17 @@ inline bool sphere_roots(const point3& o, const vec3& d, const point3& center, d
 
 class sphere : public hittable {
   public:
+    // A still sphere.
     sphere(const point3& center, double radius, std::shared_ptr<material> mat)
-        : center_(center), radius_(radius), mat_(std::move(mat)) {}
+        : path_(center, vec3(0, 0, 0)), radius_(radius), mat_(std::move(mat)) {}
+    // A moving sphere: at center1 at time 0, at center2 at time 1.
+    sphere(const point3& center1, const point3& center2, double radius, std::shared_ptr<material> mat)
+        : path_(center1, center2 - center1), radius_(radius), mat_(std::move(mat)) {}
 
     bool hit(const ray& r, interval ray_t, hit_record& rec) const override {
+        const point3 current_center = path_.at(r.time()); // where the sphere is when the ray passes
         double t0, t1;
-        if (!sphere_roots(r.origin(), r.direction(), center_, radius_, t0, t1)) return false;
+        if (!sphere_roots(r.origin(), r.direction(), current_center, radius_, t0, t1)) return false;
 
         // Find the nearest root that lies in the acceptable range.
         double root = t0;
@@ -64,7 +75,7 @@ class sphere : public hittable {
 
         rec.t = root;
         rec.p = r.at(rec.t);
-        vec3 outward_normal = (rec.p - center_) / radius_;
+        vec3 outward_normal = (rec.p - current_center) / radius_;
         rec.set_face_normal(r, outward_normal);
         get_sphere_uv(outward_normal, rec.u, rec.v);
         rec.mat = mat_;
@@ -74,36 +85,43 @@ class sphere : public hittable {
 
     aabb bounding_box() const override {
         vec3 r(radius_, radius_, radius_);
-        return aabb(center_ - r, center_ + r);
+        const point3 c0 = path_.origin(), c1 = path_.at(1);
+        return aabb(aabb(c0 - r, c0 + r), aabb(c1 - r, c1 + r));
     }
 
     // Book 3: the density of `direction` when random(origin) draws directions uniformly within
     // the cone of directions from origin that meet the sphere: 1 / the cone's solid angle,
     // 2 pi (1 - cos theta_max), with sin^2 theta_max = r^2 / d^2. Beyond the book: from inside
     // the sphere every direction meets it, and directions are drawn uniformly over all of them.
+    // A moving sphere is sampled where it is at time 0, as book 3 does (its pdfs know no time).
     double pdf_value(const point3& origin, const vec3& direction) const override {
         hit_record rec;
         if (!this->hit(ray(origin, direction), interval(0.001, infinity), rec)) return 0;
-        double distance_squared = (center_ - origin).length_squared();
+        double distance_squared = (center() - origin).length_squared();
         if (!(distance_squared > radius_ * radius_)) return 1 / (4 * pi);
         double solid_angle = 2 * pi * one_minus_cos_theta_max(radius_, distance_squared);
         return 1 / solid_angle;
     }
 
     vec3 random(const point3& origin) const override {
-        vec3 direction = center_ - origin;
+        vec3 direction = center() - origin;
         double distance_squared = direction.length_squared();
         if (!(distance_squared > radius_ * radius_)) return random_unit_vector();
         onb uvw(direction);
         return uvw.transform(random_to_sphere(radius_, distance_squared));
     }
 
-    const point3& center() const { return center_; }
+    // The centre at time 0 (a still sphere's only centre), and at `time`.
+    const point3& center() const { return path_.origin(); }
+    point3 center(double time) const { return path_.at(time); }
+    // How far the centre moves from time 0 to time 1 (center2 - center1); zero for a still sphere.
+    const vec3& motion() const { return path_.direction(); }
+    bool is_moving() const { return motion().x() != 0 || motion().y() != 0 || motion().z() != 0; }
     double radius() const { return radius_; }
     const std::shared_ptr<material>& mat() const { return mat_; }
 
   private:
-    point3 center_;
+    ray path_; // the centre's path: origin center1, direction center2 - center1
     double radius_;
     std::shared_ptr<material> mat_;
 

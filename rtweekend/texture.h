@@ -1,17 +1,29 @@
 #pragma once
 // texture: a colour that varies over a surface (book 2), looked up by the hit's surface
-// coordinates (u, v) and its point p. solid_color is the constant one, what lambertian(color)
-// and diffuse_light(color) wrap.
+// coordinates (u, v) and its point p (in world coordinates).
 //
-//   auto tex = make_shared<solid_color>(0.2, 0.3, 0.1);
-//   auto mat = make_shared<lambertian>(tex);
+//   solid_color(c)                           the constant one, what lambertian(color) and
+//                                            diffuse_light(color) wrap
+//   checker_texture(scale, even, odd)        3-D cells of side `scale`: `even` where
+//   checker_texture(scale, c1, c2)           floor(x/scale) + floor(y/scale) + floor(z/scale) is even
+//   image_texture("earthmap.jpg")            a picture wrapped by (u, v): u left to right, v bottom
+//                                            to top; sRGB files decoded to linear (rtw_stb_image.h)
+//   noise_texture(scale)                     the book's marble: 0.5 (1 + sin(scale z + 10 turb(p)))
 //
-// The renderer recognises a material whose texture is exactly a solid_color (exact_solid_color)
-// and renders it without virtual calls; any other texture is looked up through value().
+//   auto mat = make_shared<lambertian>(make_shared<checker_texture>(0.32, color(.2, .3, .1), color(.9, .9, .9)));
+//
+// The renderer compiles these four into a flat table (engine/texture_table.h) and evaluates them
+// without virtual calls; a texture of another class (a user's own) is looked up through value().
 
 #include "color.h"
+#include "interval.h"
+#include "perlin.h"
+#include "rtw_stb_image.h"
+#include "scene_error.h"
 #include "vec3.h"
 
+#include <cmath>
+#include <memory>
 #include <typeinfo>
 
 namespace rt {
@@ -36,6 +48,59 @@ class solid_color : public texture {
     color albedo_;
 };
 
+class checker_texture : public texture {
+  public:
+    checker_texture(double scale, std::shared_ptr<texture> even, std::shared_ptr<texture> odd);
+    checker_texture(double scale, const color& c1, const color& c2)
+        : checker_texture(scale, std::make_shared<solid_color>(c1), std::make_shared<solid_color>(c2)) {}
+
+    color value(double u, double v, const point3& p) const override;
+
+    double inv_scale() const { return inv_scale_; }
+    const std::shared_ptr<texture>& even() const { return even_; }
+    const std::shared_ptr<texture>& odd() const { return odd_; }
+    // Whether the cell holding p is an even one (exposed so the renderer tests the same rule).
+    static bool is_even(double inv_scale, const point3& p);
+
+  private:
+    double inv_scale_;
+    std::shared_ptr<texture> even_, odd_;
+};
+
+class image_texture : public texture {
+  public:
+    // Throws scene_error naming the file when it is missing or not an image.
+    explicit image_texture(const char* filename) : image_(filename) {}
+
+    color value(double u, double v, const point3& p) const override;
+
+    const rtw_image& image() const { return image_; }
+    // The pixel (i, j) that (u, v) falls in: u and v clamped to [0, 1], v = 1 the top row, the
+    // far edges belonging to the last pixel.
+    static void pixel_at(double u, double v, int width, int height, int& i, int& j);
+
+  private:
+    rtw_image image_;
+};
+
+class noise_texture : public texture {
+  public:
+    explicit noise_texture(double scale) : scale_(scale) {}
+
+    color value(double u, double v, const point3& p) const override;
+
+    double scale() const { return scale_; }
+    const perlin& noise() const { return noise_; }
+    // The marble's grey level at p for `noise` at `scale`.
+    static double marble(const perlin& noise, double scale, const point3& p) {
+        return 0.5 * (1 + std::sin(scale * p.z() + 10 * noise.turb(p, 7)));
+    }
+
+  private:
+    perlin noise_;
+    double scale_;
+};
+
 // The texture as a solid_color if it is exactly one (not a subclass, which may override
 // value()), else null: a material whose texture is one is rendered from its constant colour.
 inline const solid_color* exact_solid_color(const texture* tex) {
@@ -45,9 +110,53 @@ inline const solid_color* exact_solid_color(const texture* tex) {
     return solid && typeid(*tex) == typeid(solid_color) ? solid : nullptr;
 }
 
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+inline checker_texture::checker_texture(double scale, std::shared_ptr<texture> even, std::shared_ptr<texture> odd)
+    : inv_scale_(1.0 / scale), even_(std::move(even)), odd_(std::move(odd)) {
+    if (!(std::isfinite(scale) && scale != 0)) throw scene_error("checker_texture scale must be finite and non-zero");
+    if (!even_ || !odd_) throw scene_error("checker_texture needs two textures, got a null one");
+}
+
+inline bool checker_texture::is_even(double inv_scale, const point3& p) {
+    // Cell indices summed as doubles: exact for any cell a float scene can hold, and no int
+    // overflow far from the origin. Negative cells count too: floor(-0.5) = -1 is odd.
+    const double sum = std::floor(inv_scale * p.x()) + std::floor(inv_scale * p.y()) + std::floor(inv_scale * p.z());
+    return std::fmod(sum, 2.0) == 0;
+}
+
+inline color checker_texture::value(double u, double v, const point3& p) const {
+    return is_even(inv_scale_, p) ? even_->value(u, v, p) : odd_->value(u, v, p);
+}
+
+inline void image_texture::pixel_at(double u, double v, int width, int height, int& i, int& j) {
+    const interval unit(0, 1);
+    u = std::isnan(u) ? 0 : unit.clamp(u);
+    v = 1.0 - (std::isnan(v) ? 0 : unit.clamp(v)); // image rows run top to bottom
+    i = int(u * width);
+    j = int(v * height);
+    if (i >= width) i = width - 1;
+    if (j >= height) j = height - 1;
+}
+
+inline color image_texture::value(double u, double v, const point3& /*p*/) const {
+    int i, j;
+    pixel_at(u, v, image_.width(), image_.height(), i, j);
+    const rtw_image::rgb c = image_.linear(i, j);
+    return color(c.r, c.g, c.b);
+}
+
+inline color noise_texture::value(double /*u*/, double /*v*/, const point3& p) const {
+    const double grey = marble(noise_, scale_, p);
+    return color(grey, grey, grey);
+}
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::checker_texture;
+using rt::image_texture;
+using rt::noise_texture;
 using rt::solid_color;
 using rt::texture;
 #endif

@@ -12,7 +12,9 @@
 // In the renderer's material contract (engine/bsdf.h) it is a Lambertian base of albedo `diffuse`
 // under its mirror, conductor or dielectric lobe. The Whitted integrator (engine/whitted.h) adds
 // the course's ambient and Blinn-Phong specular terms, which describe point-light shading rather
-// than a BSDF; the path tracer has no use for them (it sees the base and the lobe).
+// than a BSDF. For the path tracer a plain material with a specular reflectance is a blinn_phong
+// surface (material.h: diffuse plus a normalised glossy lobe of that reflectance and exponent, both
+// scaled down where their sum exceeds 1); mirrors, conductors and dielectrics ignore `specular`.
 //
 // Colours here are in the course's units: 0..255 per channel on output, no gamma.
 
@@ -48,11 +50,15 @@ class whitted_material : public material {
     }
 
     // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
-    compiled_material compiled() const {
+    // glossy = false leaves out the blinn_phong lobe of a plain material (the Whitted integrator,
+    // which shades specular highlights by the course's own formula, asks for that).
+    compiled_material compiled(bool glossy = true) const {
         compiled_material m;
         const float n = static_cast<float>(refraction_index), k = static_cast<float>(absorption_index);
         switch (effective_kind()) {
         case kind_t::plain:
+            if (glossy && (specular.x() > 0 || specular.y() > 0 || specular.z() > 0))
+                return blinn_phong::contract(diffuse, specular, phong_exponent, this);
             m.kind = material_kind::lambertian;
             m.albedo = vec3f(diffuse);
             break;

@@ -8,20 +8,9 @@
 
 #include "test_helpers.h"
 
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#endif
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#include <stb/stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+// stb_image reads the PNGs back: the copy rtw_stb_image.h compiles (camera.h, through
+// test_helpers.h and texture.h, already includes it).
+#include <rtweekend/rtw_stb_image.h>
 
 #include <algorithm>
 #include <atomic>

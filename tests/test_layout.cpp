@@ -28,16 +28,18 @@ const std::vector<std::vector<std::string>> ladder = {
     {"vec3.h", "interval.h", "ray.h", "color.h", "aabb.h", "engine/vec3f.h", "engine/sampling.h",
      "engine/alias_table.h", "engine/light_sampling.h",
      "engine/ray_offset.h", "engine/fresnel.h", "engine/image.h", "engine/validate.h",
-     "point_light.h"},
+     "point_light.h", "perlin.h", "rtw_stb_image.h"},
     // 3. the material contract
     {"engine/bsdf.h"},
     // 4. the scene as users write it
     {"hittable.h", "hittable_list.h", "sphere.h", "triangle.h", "mesh.h", "material.h", "whitted_material.h",
-     "whitted_scene.h", "texture.h", "onb.h", "pdf.h", "quad.h", "transform.h"},
+     "whitted_scene.h", "texture.h", "constant_medium.h", "onb.h", "pdf.h", "quad.h", "transform.h", "bvh.h"},
     // 5. the compiled scene: shape sets and their kernels, the BVH, the compilers
     {"engine/leaf_query.h", "engine/bvh.h", "engine/surface_hit.h", "engine/sphere_set.h", "engine/triangle_set.h",
-     "engine/quad_set.h", "engine/user_shape_set.h", "engine/light_set.h", "engine/compiled_scene.h",
-     "engine/material_compiler.h", "engine/scene_compiler.h"},
+     "engine/quad_set.h", "engine/user_shape_set.h", "engine/moving_sphere_set.h", "engine/instance_set.h",
+     "engine/light_set.h", "engine/compiled_scene.h",
+     "engine/material_compiler.h", "engine/scene_compiler.h", "engine/texture_table.h",
+     "engine/surface_coordinates.h"},
     // 6. rendering: settings, the scheduler, the integrators, writing images
     {"measure/adaptive.h", "engine/render_settings.h", "engine/scheduler.h", "engine/camera_frame.h",
      "engine/environment.h", "engine/user_material.h", "engine/path_tracer.h", "engine/whitted.h",

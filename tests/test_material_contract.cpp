@@ -66,6 +66,11 @@ std::vector<named_material> all_materials() {
         make("course mirror over diffuse", course(kind::mirror, color(0.3, 0.2, 0.1), color(0.6, 0.7, 0.8))),
         make("course conductor over diffuse", course(kind::conductor, color(0.1, 0.1, 0.1), color(0.9, 0.9, 0.9), 0.2, 3)),
         make("course dielectric over diffuse", course(kind::dielectric, color(0.05, 0.05, 0.05), color(0, 0, 0))),
+        make("isotropic", std::make_shared<isotropic>(color(0.9, 0.6, 0.3))),
+        make("plastic 1.5", std::make_shared<plastic>(color(0.7, 0.4, 0.1), 1.5)),
+        make("plastic 2.4, white", std::make_shared<plastic>(color(1, 1, 1), 2.4)),
+        make("blinn_phong 20", std::make_shared<blinn_phong>(color(0.4, 0.3, 0.2), color(0.5, 0.5, 0.5), 20)),
+        make("blinn_phong 2, glossy only", std::make_shared<blinn_phong>(color(0, 0, 0), color(0.9, 0.8, 0.7), 2)),
     };
 }
 
@@ -134,8 +139,9 @@ TEST_CASE("material contract: sample's value is eval / pdf at the sampled direct
                         CHECK(s.pdf > 0);
                         CHECK(s.pdf <= 1.0f + 1e-6f);
                         const vec3f e = nm.m.eval(wo, s.wi, sp);
-                        // A delta lobe adds nothing to eval or pdf (a diffuse base may, by itself).
-                        if (!nm.m.has_diffuse_base()) {
+                        // A delta lobe adds nothing to eval or pdf (a lobe with a density beside
+                        // it may, by itself).
+                        if (!nm.m.has_non_delta_lobe()) {
                             CHECK(e.x == 0);
                             CHECK(nm.m.pdf(wo, s.wi, sp) == 0);
                         }
@@ -150,9 +156,10 @@ TEST_CASE("material contract: sample's value is eval / pdf at the sampled direct
                 }
                 // Every material samples something at these angles.
                 CHECK(density + delta > 0);
-                const bool glossy = nm.m.kind == material_kind::lambertian || nm.m.is_glossy_metal();
-                if (glossy) CHECK(delta == 0);
-                if (!glossy && !nm.m.has_diffuse_base()) CHECK(density == 0);
+                const bool density_only = nm.m.kind == material_kind::lambertian || nm.m.is_glossy_metal() ||
+                                          nm.m.kind == material_kind::isotropic || nm.m.kind == material_kind::blinn_phong;
+                if (density_only) CHECK(delta == 0);
+                if (!nm.m.has_non_delta_lobe()) CHECK(density == 0);
             }
         }
     }
@@ -181,8 +188,7 @@ TEST_CASE("material contract: chi-square of sample() against pdf() for every lob
     // expecting the rest.
     pcg32 rng(202);
     for (const named_material& nm : all_materials()) {
-        const bool has_density = nm.m.kind == material_kind::lambertian || nm.m.is_glossy_metal() || nm.m.has_diffuse_base();
-        if (!has_density) continue;
+        if (!nm.m.has_non_delta_lobe()) continue;
         for (double deg : {0.0, 45.0, 80.0}) {
             CAPTURE(nm.name);
             CAPTURE(deg);
@@ -191,8 +197,10 @@ TEST_CASE("material contract: chi-square of sample() against pdf() for every lob
             const bool glossy = nm.m.is_glossy_metal();
             const vec3f axis = glossy ? normalize(reflect_f(-wo, normal_f)) : normal_f;
             // The lobe's angular extent about its axis: all of a hemisphere, or the cone of half
-            // angle asin(fuzz).
-            const double mu0 = glossy ? std::sqrt(std::fmax(0.0, 1 - double(nm.m.fuzz) * nm.m.fuzz)) : 0.0;
+            // angle asin(fuzz); a phase function's, the whole sphere.
+            const double mu0 = glossy                        ? std::sqrt(std::fmax(0.0, 1 - double(nm.m.fuzz) * nm.m.fuzz))
+                               : nm.m.is_phase_function() ? -1.0
+                                                            : 0.0;
             const frame3 f(axis);
             const int nmu = 10, nphi = 16, q = 12;
             const long N = 200000;
@@ -311,9 +319,12 @@ TEST_CASE("material contract: reciprocity of eval where it holds") {
     // angle between wi and wo's mirror only) is symmetric instead, so f differs by cos wo / cos wi.
     pcg32 rng(505);
     for (const named_material& nm : all_materials()) {
-        const bool diffuse = nm.m.kind == material_kind::lambertian || nm.m.has_diffuse_base();
+        // Reciprocal in f: the Lambertian bases, plastic's coupled base, Blinn-Phong's lobes.
+        const bool diffuse = nm.m.kind == material_kind::lambertian || nm.m.has_diffuse_base() ||
+                             nm.m.kind == material_kind::plastic || nm.m.kind == material_kind::blinn_phong;
         const bool glossy = nm.m.is_glossy_metal();
-        if (!diffuse && !glossy) continue;
+        const bool phase = nm.m.is_phase_function(); // eval is the phase function: symmetric
+        if (!diffuse && !glossy && !phase) continue;
         CAPTURE(nm.name);
         const shading_point sp{normal_f, true};
         const frame3 f(normal_f);
@@ -325,6 +336,7 @@ TEST_CASE("material contract: reciprocity of eval where it holds") {
             vec3f b = glossy ? normalize(reflect_f(-a, normal_f) + 0.9f * nm.m.fuzz * sample_unit_ball(u1, u2, u3))
                              : f.dir(0.05 + 0.95 * rng.next_double(), 2 * pi_d * rng.next_double());
             if (!(dot(b, normal_f) > 0.05f)) continue;
+            if (phase && i % 2) b = -b; // a phase function scatters between the two sides alike
             const vec3f ab = nm.m.eval(a, b, sp), ba = nm.m.eval(b, a, sp);
             if (!(ab.x > 0)) continue;
             ++compared;
@@ -387,6 +399,22 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
                 case material_kind::fresnel_dielectric: expect[k] = 1; break;
                 case material_kind::conductor: expect[k] = m.albedo[k] * fresnel_conductor(c, m.eta[k], m.k[k]); break;
                 case material_kind::diffuse_light: expect[k] = 0; break; // an emitter reflects nothing
+                case material_kind::isotropic: expect[k] = m.albedo[k]; break; // every draw, the albedo
+                case material_kind::plastic: {
+                    // The coat F, the base albedo (1 - F) (bsdf.h, plastic_base_factor); F from
+                    // the exact Fresnel equations (test_conductor_fresnel.cpp checks them).
+                    const double F = fresnel_dielectric(c, m.refraction_index);
+                    expect[k] = F + m.albedo[k] * (1 - F);
+                    break;
+                }
+                case material_kind::blinn_phong:
+                    // Known in closed form at normal incidence only (test_glossy.cpp): kd + ks E(n).
+                    if (deg == 0) {
+                        const double n = m.exponent, s = std::sqrt(0.5);
+                        const double E = (n + 1) * (2 * (1 - std::pow(s, n + 3)) / (n + 3) - (1 - std::pow(s, n + 1)) / (n + 1));
+                        expect[k] = m.albedo[k] + m.specular[k] * E;
+                    }
+                    break;
                 case material_kind::user: break;
                 }
                 if (m.has_diffuse_base()) expect[k] += m.diffuse[k];
@@ -398,13 +426,14 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
                 // Never more energy than received; except that the course's dielectric adds its
                 // diffuse term on top of a lossless interface, by the course's own definition.
                 if (!(m.kind == material_kind::fresnel_dielectric && m.has_diffuse_base())) CHECK(mean <= 1 + tol);
-                CHECK(std::fabs(mean - expect[k]) <= tol);
+                if (expect[k] >= 0) CHECK(std::fabs(mean - expect[k]) <= tol);
             }
 
             // The integral of eval over the hemisphere, for the lobes with a density: the base's
             // kd, the Lambertian's albedo, the fuzzy metal's albedo times what stays above.
             const bool diffuse_only = m.kind == material_kind::lambertian || m.has_diffuse_base();
-            if (!diffuse_only && !m.is_glossy_metal()) continue;
+            const bool known = m.kind == material_kind::plastic || (m.kind == material_kind::blinn_phong && deg == 0);
+            if (!diffuse_only && !m.is_glossy_metal() && !known) continue;
             if (m.is_glossy_metal() && m.fuzz < 0.2f) continue; // too narrow for this quadrature
             const int nmu = 200, nphi = 400;
             const frame3 f(normal_f);
@@ -416,8 +445,10 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
                 }
             for (int k = 0; k < 3; ++k) {
                 integral[k] *= (1.0 / nmu) * (2 * pi_d / nphi);
+                // plastic: the base alone, albedo (1 - F) = expect - F.
                 double want = m.kind == material_kind::lambertian ? m.albedo[k]
                               : m.has_diffuse_base()              ? m.diffuse[k]
+                              : m.kind == material_kind::plastic  ? expect[k] - fresnel_dielectric(c, m.refraction_index)
                                                                   : expect[k];
                 INFO("channel " << k << ": integral of eval " << integral[k] << ", expected " << want);
                 CHECK(integral[k] <= 1.0 + 1e-3);

@@ -91,7 +91,7 @@ v3 normalized(v3 a) { return (1.0 / length(a)) * a; }
 
 // Blinn-Phong radiance of one channel from one unshadowed point light:
 // E (kd max(0, n.l) + ks max(0, n.h)^p), E = I / d^2, h = normalize(l + v).
-double blinn_phong(v3 x, v3 n, v3 v, v3 light, double intensity, double kd, double ks, double p) {
+double course_blinn_phong(v3 x, v3 n, v3 v, v3 light, double intensity, double kd, double ks, double p) {
     v3 to_light = light - x;
     double d2 = dot(to_light, to_light);
     v3 l = normalized(to_light);
@@ -154,7 +154,7 @@ TEST_CASE("whitted: one sphere, one point light, ambient: centre pixel and backg
     rgb want{0.5 * Ia + E * (0.1 * nl + 0.1 * std::pow(nh, 10)),
              1.0 * Ia + E * (0.05 * nl + 0.1 * std::pow(nh, 10)),
              1.0 * Ia + E * (0.02 * nl + 0.1 * std::pow(nh, 10))};
-    CHECK(want.r == doctest::Approx(blinn_phong(x, n, view, light, I, 0.1, 0.1, 10) + 10));
+    CHECK(want.r == doctest::Approx(course_blinn_phong(x, n, view, light, I, 0.1, 0.1, 10) + 10));
     check_pixel(img, 2, 2, want);
 
     // Every other pixel misses: its ray makes at least atan(0.4) = 21.8 degrees with the axis
@@ -183,9 +183,9 @@ TEST_CASE("whitted: a lookAt camera: centre pixel by hand, and the same bytes as
     const v3 n = normalized(e - C);
     const v3 x = C + 2.0 * n;
     REQUIRE(dot(n, normalized(light - x)) > 0);
-    rgb want{0.5 * 20 + blinn_phong(x, n, n, light, 72000, 0.1, 0.1, 10),
-             1.0 * 20 + blinn_phong(x, n, n, light, 72000, 0.05, 0.1, 10),
-             1.0 * 20 + blinn_phong(x, n, n, light, 72000, 0.02, 0.1, 10)};
+    rgb want{0.5 * 20 + course_blinn_phong(x, n, n, light, 72000, 0.1, 0.1, 10),
+             1.0 * 20 + course_blinn_phong(x, n, n, light, 72000, 0.05, 0.1, 10),
+             1.0 * 20 + course_blinn_phong(x, n, n, light, 72000, 0.02, 0.1, 10)};
     check_pixel(look, 4, 3, want);
     // The corners miss (the sphere subtends asin(2/15.4) = 7.5 degrees; the corners' rays are
     // more than 20 degrees off the gaze): background.
@@ -246,7 +246,7 @@ TEST_CASE("whitted: shadows: occluded, unoccluded, and an occluder beyond the li
     const double nl = 1 / std::sqrt(2.0);
     rgb lit{15 + 100 * (0.5 * nl + 0.2 * std::pow(nhB, 4)), 12 + 100 * (0.3 * nl + 0.2 * std::pow(nhB, 4)),
             9 + 100 * (0.1 * nl + 0.2 * std::pow(nhB, 4))};
-    CHECK(lit.r == doctest::Approx(15 + blinn_phong(B, n, vB, light, 3200, 0.5, 0.2, 4)));
+    CHECK(lit.r == doctest::Approx(15 + course_blinn_phong(B, n, vB, light, 3200, 0.5, 0.2, 4)));
     check_pixel(img, 3, 2, lit);
 
     // Pixel (2,1) -> C = (0,4,-10): sphere 2 (centre (0,-6,0), radius 0.5) lies on the line from C

@@ -36,6 +36,14 @@
 //   conductor             mirror weighted by tint * Fr(cos) per channel (exact, complex index)
 //   diffuse_light         an emitter (book 2's diffuse_light): radiance `emission` towards every
 //                         direction on the front side (both sides if two_sided); scatters nothing
+//   isotropic             book 2's phase function of a constant_medium: uniform over the sphere,
+//                         eval = albedo / (4 pi) with no cosine (see eval), pdf = 1 / (4 pi)
+//   plastic               a Lambertian base under a smooth dielectric coat: the coat's mirror
+//                         reflection (a delta lobe of weight F(cos_o)) and the base coupled to it
+//                         (plastic_base_factor below); energy-conserving, reciprocal
+//   blinn_phong           a Lambertian lobe plus a normalised Blinn-Phong glossy lobe
+//                         (blinn_phong_lobe below), sampled by a mixture of the cosine and the
+//                         half-vector densities
 //   user                  a user's material subclass: the integrators call its virtual scatter()
 //                         (user_material.h); it has no pdf and is treated like a delta lobe
 // A material compiled from the CENG795 course's (whitted_material) may also carry a Lambertian
@@ -54,7 +62,9 @@ namespace rt {
 
 class material;
 
-enum class material_kind : uint8_t { lambertian, metal, dielectric, fresnel_dielectric, conductor, diffuse_light, user };
+enum class material_kind : uint8_t {
+    lambertian, metal, dielectric, fresnel_dielectric, conductor, diffuse_light, isotropic, plastic, blinn_phong, user
+};
 
 // Which lobes sample() may choose from: bit flags.
 enum lobe : uint8_t {
@@ -66,7 +76,8 @@ enum lobe : uint8_t {
 
 // Where a material is asked: the unit normal on the side of wo (the geometric or the shading
 // normal, as the integrator chooses) and whether the ray hit the front face (glass needs to
-// know which index is on which side).
+// know which index is on which side). A phase function (isotropic) ignores both: its point is
+// inside a volume, and whatever normal the medium reports there means nothing.
 struct shading_point {
     vec3f n;
     bool front_face = true;
@@ -80,20 +91,31 @@ struct material_sample {
     bool is_delta() const { return sampled != non_delta_lobe; }
 };
 
+// compiled_material::texture when the material has no texture.
+inline constexpr uint32_t no_texture = UINT32_MAX;
+
 // Below this fuzz a metal's lobe is flagged delta (see the top of the file).
 inline constexpr float min_glossy_fuzz = 1e-4f;
 
 struct compiled_material {
     material_kind kind = material_kind::lambertian;
-    vec3f albedo{0.5f, 0.5f, 0.5f}; // lambertian, metal; conductor: the tint
+    vec3f albedo{0.5f, 0.5f, 0.5f}; // lambertian, metal, isotropic; conductor: the tint; plastic,
+                                    // blinn_phong: the diffuse reflectance
     float fuzz = 0;                 // metal
-    float refraction_index = 1;     // dielectric, fresnel_dielectric
+    float refraction_index = 1;     // dielectric, fresnel_dielectric; plastic: the coat's
+    float coat_average = 0;         // plastic: the coat's mean Fresnel reflectance (fresnel_average)
+    vec3f specular{0, 0, 0};        // blinn_phong: the glossy lobe's reflectance
+    float exponent = 0;             // blinn_phong: the Phong exponent
     vec3f absorption{0, 0, 0};      // fresnel_dielectric: per unit length inside
     vec3f eta{1, 1, 1}, k{0, 0, 0}; // conductor: complex index eta + ik per channel
     vec3f diffuse{0, 0, 0};         // a Lambertian base under a delta lobe (course materials); 0: none
     vec3f emission{0, 0, 0};        // diffuse_light: emitted radiance
     bool two_sided = false;         // diffuse_light: emits from the back face too
     const material* source = nullptr; // what it was compiled from; a user material is called through it
+    // A lambertian's albedo or a diffuse_light's emission looked up per hit in the compiled scene's
+    // texture table (engine/texture_table.h); no_texture: the constant albedo / emission above.
+    // The integrator then hands the contract a copy with that colour filled in.
+    uint32_t texture = no_texture;
 
     // Draws wi for wo, restricted to `lobes`; false when the light is absorbed (or no lobe of
     // `lobes` exists). Draws its random numbers from u.next_float() (uniform in [0, 1)).
@@ -117,13 +139,18 @@ struct compiled_material {
 
     // Whether light can pass through the surface (its back face must never be culled).
     bool transmits() const {
-        return kind == material_kind::dielectric || kind == material_kind::fresnel_dielectric || kind == material_kind::user;
+        return kind == material_kind::dielectric || kind == material_kind::fresnel_dielectric ||
+               kind == material_kind::isotropic || kind == material_kind::user;
     }
+    // Whether it is a phase function, scattering to the whole sphere at a point inside a volume:
+    // eval has no cosine, and light may arrive from any side.
+    bool is_phase_function() const { return kind == material_kind::isotropic; }
     bool has_diffuse_base() const { return diffuse.x > 0 || diffuse.y > 0 || diffuse.z > 0; }
     bool is_glossy_metal() const { return kind == material_kind::metal && fuzz >= min_glossy_fuzz; }
     // Whether some lobe has a density (diffuse or glossy): light sampling can reach it.
     bool has_non_delta_lobe() const {
-        return kind == material_kind::lambertian || is_glossy_metal() || has_diffuse_base();
+        return kind == material_kind::lambertian || is_glossy_metal() || has_diffuse_base() ||
+               kind == material_kind::isotropic || kind == material_kind::plastic || kind == material_kind::blinn_phong;
     }
 
   private:
@@ -131,6 +158,10 @@ struct compiled_material {
     bool sample_lobe(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s, lobe lobes) const;
     // The probability sample() picks the diffuse base over the lobe.
     float base_probability() const;
+    // plastic: the probability sample() picks the coat's mirror reflection, for cos_o = wo.n.
+    float coat_probability(float cos_o) const;
+    // blinn_phong: the probability sample() draws from the glossy lobe.
+    float glossy_probability() const;
 };
 
 // --- the pieces the materials share -------------------------------------------------------------
@@ -171,7 +202,104 @@ inline float fuzzy_mirror_density(const vec3f& w, const vec3f& m, float f) {
     return s * (3.0f * c * c + s2) / (2.0f * pi_f * f * f * f);
 }
 
+// The cosine-weighted hemispherical average of the Fresnel reflectance of a smooth dielectric
+// interface of index ratio eta (n_transmitted / n_incident), 2 int_0^1 F(mu) mu dmu: the fraction
+// of uniformly diffuse light the interface reflects. Computed in double by the midpoint rule over
+// mu (4096 points; 2 mu F(mu) is smooth but for a square-root kink at the critical angle when
+// eta < 1: error below 1e-6).
+double fresnel_average(double eta);
+
+// plastic's base: f_base(wo, wi) = albedo / pi * plastic_base_factor, with
+//   plastic_base_factor = (1 - F(cos_i)) (1 - F(cos_o)) / (1 - F_avg),
+// the coupling of Kelemen and Szirmay-Kalos ("A Microfacet Based Coupled Specular-Matte BRDF
+// Model with Importance Sampling", Eurographics 2001 short papers) with a smooth coat, whose
+// directional albedo is F itself. Light entering at wo reaches the base with weight 1 - F(cos_o);
+// the base's exit is weighted by 1 - F(cos_i) and normalised by 1 - F_avg, the integral of
+// (1 - F(cos_i)) cos_i / pi over the hemisphere, so the base reflects albedo (1 - F(cos_o)) in all:
+// with the coat's F(cos_o), a plastic reflects F + albedo (1 - F) of what it receives. A white
+// plastic (albedo 1) reflects all of it, as a lossless coat over a white base would after all its
+// inner bounces; a coloured one absorbs (1 - albedo)(1 - F). Symmetric in wo and wi: reciprocal.
+float plastic_base_factor(float cos_i, float cos_o, float eta, float coat_average);
+
+// blinn_phong's glossy lobe, f_s(wo, wi) |cos_i| = ks * blinn_phong_lobe(...), after the specular
+// term of Ashikhmin and Shirley ("An Anisotropic Phong BRDF Model", JGT 5(2), 2000, eq. 4, with
+// n_u = n_v = n and their Fresnel term replaced by the constant ks):
+//   f_s = ks (n + 1) / (8 pi) cos^n theta_h / ((wi.h) max(cos_i, cos_o)).
+// The half vector h drawn with density p_h = (n + 1) / (2 pi) cos^n theta_h and reflected gives wi
+// the density p_h / (4 wo.h) (Walter et al., EGSR 2007, eq. 14), so f_s cos_i = ks pdf(wi)
+// cos_i / max(cos_i, cos_o) <= ks pdf(wi): the lobe reflects at most ks of what it receives, at
+// every angle, for every n (not so for the (n + 8) / (8 pi) normalisation of Real-Time Rendering,
+// 3rd ed., eq. 7.49, exact only at normal incidence). Symmetric in wo and wi: reciprocal.
+float blinn_phong_lobe(const vec3f& wo, const vec3f& wi, const vec3f& n, float exponent);
+// The density of wi when h is drawn from p_h and wo reflected about it.
+float blinn_phong_lobe_pdf(const vec3f& wo, const vec3f& wi, const vec3f& n, float exponent);
+
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+inline double fresnel_average(double eta) {
+    const int n = 4096;
+    double sum = 0;
+    for (int i = 0; i < n; ++i) {
+        const double mu = (i + 0.5) / n;
+        sum += 2 * mu * fresnel_dielectric(mu, eta);
+    }
+    return sum / n;
+}
+
+inline float plastic_base_factor(float cos_i, float cos_o, float eta, float coat_average) {
+    const float ti = 1.0f - fresnel_dielectric_f(cos_i, eta), to = 1.0f - fresnel_dielectric_f(cos_o, eta);
+    return ti * to / (1.0f - coat_average);
+}
+
+namespace detail {
+// The half vector between two unit directions on the normal's side, and its cosines.
+struct half_vector {
+    vec3f h;
+    float cos_h = 0, wo_h = 0; // h.n and wo.h
+    half_vector(const vec3f& wo, const vec3f& wi, const vec3f& n) : h(normalize(wo + wi)) {
+        cos_h = std::fmax(dot(h, n), 0.0f);
+        wo_h = dot(wo, h);
+    }
+};
+
+// An orthonormal basis across the unit vector w, without a branch on its direction: Duff et al.,
+// "Building an Orthonormal Basis, Revisited", JCGT 6(1), 2017.
+inline void frame_across(const vec3f& w, vec3f& e1, vec3f& e2) {
+    const float sign = std::copysign(1.0f, w.z);
+    const float a = -1.0f / (sign + w.z);
+    const float b = w.x * w.y * a;
+    e1 = {1.0f + sign * w.x * w.x * a, sign * b, -sign * w.x};
+    e2 = {b, sign + w.y * w.y * a, -w.y};
+}
+} // namespace detail
+
+inline float blinn_phong_lobe(const vec3f& wo, const vec3f& wi, const vec3f& n, float exponent) {
+    const float cos_i = dot(wi, n), cos_o = dot(wo, n);
+    if (!(cos_i > 0 && cos_o > 0)) return 0;
+    const detail::half_vector hv(wo, wi, n);
+    if (!(hv.wo_h > 0)) return 0;
+    const float d = (exponent + 1) * (1.0f / (8.0f * pi_f)) * std::pow(hv.cos_h, exponent);
+    return d * cos_i / (hv.wo_h * std::fmax(cos_i, cos_o));
+}
+
+inline float blinn_phong_lobe_pdf(const vec3f& wo, const vec3f& wi, const vec3f& n, float exponent) {
+    if (!(dot(wi, n) > 0)) return 0;
+    const detail::half_vector hv(wo, wi, n);
+    if (!(hv.wo_h > 0)) return 0;
+    return (exponent + 1) * (1.0f / (2.0f * pi_f)) * std::pow(hv.cos_h, exponent) / (4.0f * hv.wo_h);
+}
+
+inline float compiled_material::coat_probability(float cos_o) const {
+    // In proportion to what each lobe returns: F for the coat, albedo (1 - F) for the base.
+    const float f = fresnel_dielectric_f(cos_o, refraction_index);
+    const float total = f + (1.0f - f) * max_component(albedo);
+    return total > 0 ? f / total : 1.0f;
+}
+
+inline float compiled_material::glossy_probability() const {
+    const float s = max_component(specular), total = s + max_component(albedo);
+    return total > 0 ? s / total : 0.0f;
+}
 
 inline float compiled_material::base_probability() const {
     const float base = max_component(diffuse);
@@ -283,6 +411,63 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         s.sampled = delta_reflection;
         return true;
     }
+    case material_kind::isotropic: {
+        if (!(lobes & non_delta_lobe)) return false;
+        float u1 = u.next_float(), u2 = u.next_float();
+        s.wi = sample_unit_sphere(u1, u2);
+        s.value = albedo;
+        s.pdf = 1.0f / (4.0f * pi_f);
+        s.sampled = non_delta_lobe;
+        return true;
+    }
+    case material_kind::plastic: {
+        // The coat's mirror with probability q (delta), else the base, cosine-weighted.
+        const float cos_o = std::fmin(std::fmax(dot(wo, n), 0.0f), 1.0f);
+        const bool want_coat = (lobes & delta_reflection) != 0, want_base = (lobes & non_delta_lobe) != 0;
+        if (!want_coat && !want_base) return false;
+        const float q = !want_base ? 1.0f : !want_coat ? 0.0f : coat_probability(cos_o);
+        if (q > 0 && (q >= 1 || u.next_float() < q)) {
+            const float f = fresnel_dielectric_f(cos_o, refraction_index);
+            s.wi = reflect_f(d, n);
+            s.value = vec3f{f, f, f} * (1.0f / q);
+            s.pdf = q;
+            s.sampled = delta_reflection;
+            return f > 0;
+        }
+        float u1 = u.next_float(), u2 = u.next_float();
+        s.wi = sample_cosine_direction(n, u1, u2);
+        const float cos_i = dot(s.wi, n);
+        if (!(cos_i > 0)) return false;
+        s.value = albedo * (plastic_base_factor(cos_i, cos_o, refraction_index, coat_average) / (1.0f - q));
+        s.pdf = (1.0f - q) * cos_i * (1.0f / pi_f);
+        s.sampled = non_delta_lobe;
+        return true;
+    }
+    case material_kind::blinn_phong: {
+        // One-sample mixture of the cosine density and the half-vector density; the weight is
+        // eval over the mixture's pdf.
+        if (!(lobes & non_delta_lobe)) return false;
+        const float ps = glossy_probability();
+        float u0 = u.next_float(), u1 = u.next_float(), u2 = u.next_float();
+        if (u0 < ps) {
+            // cos theta_h = u^(1 / (n + 1)) has density (n + 1) cos^n theta_h sin theta_h d theta.
+            const float cos_h = std::pow(u1, 1.0f / (exponent + 1.0f));
+            const float sin_h = std::sqrt(std::fmax(0.0f, 1.0f - cos_h * cos_h));
+            vec3f e1, e2;
+            detail::frame_across(n, e1, e2);
+            const vec3f c = unit_circle(u2);
+            const vec3f h = (sin_h * c.x) * e1 + (sin_h * c.y) * e2 + cos_h * n;
+            s.wi = normalize(2.0f * dot(wo, h) * h - wo);
+        } else {
+            s.wi = sample_cosine_direction(n, u1, u2);
+        }
+        if (!(dot(s.wi, n) > 0)) return false; // reflected below the surface: f is 0 there
+        s.pdf = pdf(wo, s.wi, sp);
+        if (!(s.pdf > 0)) return false;
+        s.value = eval(wo, s.wi, sp) * (1.0f / s.pdf);
+        s.sampled = non_delta_lobe;
+        return true;
+    }
     case material_kind::diffuse_light: break; // absorbs what reaches it
     case material_kind::user: break; // the integrators call the user's scatter() (user_material.h)
     }
@@ -290,18 +475,36 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
 }
 
 inline vec3f compiled_material::eval(const vec3f& wo, const vec3f& wi, const shading_point& sp) const {
+    // A phase function p(wo, wi) takes the place of f |cos theta_i|: radiance scattered in a
+    // volume has no surface to be foreshortened by (pbrt, 4th ed., 11.3).
+    if (kind == material_kind::isotropic) return albedo * (1.0f / (4.0f * pi_f));
     const float cos_i = dot(wi, sp.n);
     if (!(cos_i > 0)) return {0, 0, 0}; // every density lobe here reflects
     vec3f f{0, 0, 0};
     if (kind == material_kind::lambertian) f = albedo * (cos_i * (1.0f / pi_f));
     if (has_diffuse_base()) f += diffuse * (cos_i * (1.0f / pi_f));
     if (is_glossy_metal()) f += albedo * fuzzy_mirror_density(wi, reflect_f(-wo, sp.n), fuzz);
+    if (kind == material_kind::plastic) {
+        const float cos_o = std::fmin(std::fmax(dot(wo, sp.n), 0.0f), 1.0f);
+        f = albedo * (plastic_base_factor(cos_i, cos_o, refraction_index, coat_average) * cos_i * (1.0f / pi_f));
+    }
+    if (kind == material_kind::blinn_phong)
+        f = albedo * (cos_i * (1.0f / pi_f)) + specular * blinn_phong_lobe(wo, wi, sp.n, exponent);
     return f;
 }
 
 inline float compiled_material::pdf(const vec3f& wo, const vec3f& wi, const shading_point& sp) const {
+    if (kind == material_kind::isotropic) return 1.0f / (4.0f * pi_f);
     const float cos_i = dot(wi, sp.n);
     if (!(cos_i > 0)) return 0;
+    if (kind == material_kind::plastic) {
+        const float cos_o = std::fmin(std::fmax(dot(wo, sp.n), 0.0f), 1.0f);
+        return (1.0f - coat_probability(cos_o)) * cos_i * (1.0f / pi_f); // the coat is a delta lobe
+    }
+    if (kind == material_kind::blinn_phong) {
+        const float ps = glossy_probability();
+        return (1.0f - ps) * cos_i * (1.0f / pi_f) + ps * blinn_phong_lobe_pdf(wo, wi, sp.n, exponent);
+    }
     if (kind == material_kind::lambertian) return cos_i * (1.0f / pi_f);
     if (has_diffuse_base()) return base_probability() * cos_i * (1.0f / pi_f); // the lobe is a delta one
     if (is_glossy_metal()) return fuzzy_mirror_density(wi, reflect_f(-wo, sp.n), fuzz);

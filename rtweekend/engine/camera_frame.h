@@ -36,8 +36,11 @@ struct camera_frame {
 
     // A camera ray for pixel (x, y): jittered uniformly over the pixel (through its centre when
     // the pixel takes a single sample, as in the book's chapters before antialiasing), from a
-    // uniform point of the lens disk when the camera has a thin lens.
-    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng) const {
+    // uniform point of the lens disk when the camera has a thin lens, and `with_time`, at a time
+    // uniform in the shutter interval [0, 1) (book 2's ray_time = random_double()). The time is
+    // drawn last, and only when asked for: a scene where nothing depends on time draws the
+    // random numbers it drew before motion blur existed.
+    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng, bool with_time = false) const {
         float jx = 0.5f, jy = 0.5f;
         if (samples_per_pixel > 1) {
             jx = rng.next_float();
@@ -50,7 +53,9 @@ struct camera_frame {
             lu = d.x;
             lv = d.y;
         }
-        return generate(float(x) + jx, float(y) + jy, lu, lv);
+        ray3f r = generate(float(x) + jx, float(y) + jy, lu, lv);
+        if (with_time) r.time = rng.next_float();
+        return r;
     }
 };
 

@@ -3,9 +3,10 @@
 //
 //   scene.intersect(ray, hit)   the closest hit        scene.occluded(ray)   any hit at all
 //
-// It holds one set per shape kind (sphere_set.h, triangle_set.h, user_shape_set.h), each in the
-// order of the leaves of one BVH over all of them (bvh.h), and the table of built-in materials
-// (bsdf.h). User-written hittables are called through their virtual hit(): from the BVH when they
+// It holds one set per shape kind (sphere_set.h, triangle_set.h, quad_set.h, user_shape_set.h,
+// moving_sphere_set.h, instance_set.h), each in the order of the leaves of one BVH over all of
+// them (bvh.h), and the table of built-in materials (bsdf.h). An instance's leaf walks its
+// object, a compiled_scene of its own (objects), in the object's frame: a two-level BVH. User-written hittables are called through their virtual hit(): from the BVH when they
 // report a bounding box, after it (for every ray) when they do not. Positions are relative to
 // `origin` (the camera).
 //
@@ -20,16 +21,20 @@
 #include "bsdf.h"
 #include "bvh.h"
 #include "force_inline.h"
+#include "instance_set.h"
 #include "leaf_query.h"
 #include "light_set.h"
+#include "moving_sphere_set.h"
 #include "quad_set.h"
 #include "sphere_set.h"
 #include "surface_hit.h"
+#include "texture_table.h"
 #include "triangle_set.h"
 #include "user_shape_set.h"
 #include "vec3f.h"
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -44,6 +49,8 @@ RTWEEKEND_FORCE_INLINE decltype(auto) with_shape_kind(shape_kind kind, F&& f) {
     case shape_kind::sphere: return f(std::integral_constant<shape_kind, shape_kind::sphere>{});
     case shape_kind::triangle: return f(std::integral_constant<shape_kind, shape_kind::triangle>{});
     case shape_kind::quad: return f(std::integral_constant<shape_kind, shape_kind::quad>{});
+    case shape_kind::moving_sphere: return f(std::integral_constant<shape_kind, shape_kind::moving_sphere>{});
+    case shape_kind::instance: return f(std::integral_constant<shape_kind, shape_kind::instance>{});
     case shape_kind::user: break;
     }
     return f(std::integral_constant<shape_kind, shape_kind::user>{});
@@ -53,11 +60,20 @@ class compiled_scene {
   public:
     vec3 origin; // world position that float coordinates are relative to
     std::vector<compiled_material> materials;
+    texture_table textures;     // the materials' textures (compiled_material::texture indexes it)
     sphere_set spheres;
     triangle_set triangles;
     quad_set quads;
     user_shape_set user_shapes; // user-written hittables with a bounding box
+    moving_sphere_set moving_spheres; // book 2's motion blur
+    instance_set instances;     // objects placed by an affine transform
     bvh8 bvh;                   // over every set
+    // The objects instances place: each a subtree of built-in shapes compiled once, with sets and
+    // a BVH of its own in its own frame (origin zero), sharing this scene's material table. An
+    // object holds no instances and no user shapes, and its emitters are not light-sampled (a
+    // path that hits one counts its emission in full).
+    std::vector<std::shared_ptr<compiled_scene>> objects;
+    box3f bounds; // of every shape in the BVH (what an object's instances transform)
     light_set lights;           // the emitters among the shapes (and point lights), for light sampling
 
     // User-written hittables without a bounding box (the default hittable::bounding_box, or a box
@@ -67,9 +83,19 @@ class compiled_scene {
 
     // The kind of every shape in the BVH when there is only one kind; empty for a mix (or none).
     std::optional<shape_kind> single_kind;
+    bool culls_back_faces = false; // set_back_face_culling was called
 
     // Whether rendering calls user code (shapes or materials), which may call random_double().
-    bool calls_user_code() const { return !user_shapes.shapes.empty() || !unbounded_user_shapes.empty() || has_user_materials; }
+    bool calls_user_code() const {
+        return !user_shapes.shapes.empty() || !unbounded_user_shapes.empty() || has_user_materials ||
+               textures.calls_user_code();
+    }
+
+    // Whether the image depends on a ray's time: something moves, or user code (which may read
+    // ray::time()) is called. Camera rays draw a time only then, so a still scene's samples
+    // draw the same random numbers as before motion blur existed.
+    bool uses_time() const { return has_motion || calls_user_code(); }
+    bool has_motion = false; // a moving sphere, here or in an object
 
     // The closest hit with t in (ray.tmin, ray.tmax); false when the ray escapes.
     bool intersect(const ray3f& r, surface_hit& hit) const;
@@ -86,22 +112,33 @@ class compiled_scene {
 
     // Bytes held for tracing: the sets and the BVH nodes.
     size_t geometry_bytes() const {
-        return bvh.stats.bytes() + spheres.bytes() + triangles.bytes() + quads.bytes() + user_shapes.bytes();
+        size_t b = bvh.stats.bytes() + spheres.bytes() + triangles.bytes() + quads.bytes() + user_shapes.bytes() +
+                   moving_spheres.bytes() + instances.bytes();
+        for (const auto& o : objects) b += o->geometry_bytes();
+        return b;
     }
 
   private:
-    // What a walk prepares for the kernels on demand: the sheared ray of the triangle test.
+    // What a walk prepares for the kernels on demand (the sheared ray of the triangle test), and
+    // what it found inside an instance: the object's own closest hit, at the object's distance.
     struct leaf_state {
         std::optional<triangle_ray> sheared;
-        hit_record* user_record; // where a user shape's closest-hit record goes
+        hit_record* user_record = nullptr; // where a user shape's closest-hit record goes
+        hit_ref inner;                     // when the best hit is an instance: the hit in its object
+        float inner_t = 0;
     };
     // Tests the ray against the leaf `ref` of shapes of kind K (see leaf_query.h).
     template <query Q, shape_kind K>
     bool leaf_kernel(const ray3f& r, uint32_t ref, float& t_best, hit_ref& best, leaf_state& state) const;
-    // Walks the BVH; a user shape's closest-hit record goes to *user_record.
+    // Instances [first, first + n): each object's own walk, in its frame.
     template <query Q>
-    bool trace(const ray3f& r, float& tmax, hit_ref& best, hit_record* user_record) const;
-    void complete_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const;
+    bool intersect_instances(const ray3f& r, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
+                             leaf_state& state) const;
+    // Walks the BVH.
+    template <query Q>
+    bool trace(const ray3f& r, float& tmax, hit_ref& best, leaf_state& state) const;
+    void complete_hit(const ray3f& r, float t, const hit_ref& best, const leaf_state& state, surface_hit& hit) const;
+    void complete_instance_hit(const ray3f& r, const leaf_state& state, uint32_t i, surface_hit& hit) const;
     bool intersect_unbounded(const ray3f& r, bool found, surface_hit& hit) const;
 };
 
@@ -117,14 +154,45 @@ RTWEEKEND_FORCE_INLINE bool compiled_scene::leaf_kernel(const ray3f& r, uint32_t
         return triangles.intersect_leaf<Q>(r, *state.sheared, first, count, t_best, best);
     } else if constexpr (K == shape_kind::quad) {
         return quads.intersect_leaf<Q>(r, first, count, t_best, best);
+    } else if constexpr (K == shape_kind::moving_sphere) {
+        return moving_spheres.intersect_leaf<Q>(r, first, count, t_best, best);
+    } else if constexpr (K == shape_kind::instance) {
+        return intersect_instances<Q>(r, first, count, t_best, best, state);
     } else {
         return user_shapes.intersect_leaf<Q>(r, origin, first, count, t_best, best, state.user_record);
     }
 }
 
+// Out of line: the object's walk calls trace again (an object holds no instances, so it never
+// comes back here), and inlined into every leaf dispatch it would crowd the traversal loop.
 template <query Q>
-bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, hit_record* user_record) const {
-    leaf_state state{std::nullopt, user_record};
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+bool compiled_scene::intersect_instances(const ray3f& r, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
+                                         leaf_state& state) const {
+    bool found = false;
+    for (uint32_t i = first; i < first + n; ++i) {
+        ray3f local;
+        float scale;
+        if (!instances.local_ray(i, r, local, scale)) continue;
+        float t_local = t_best * scale;
+        hit_ref inner;
+        leaf_state inner_state;
+        if (!objects[instances.object[i]]->trace<Q>(local, t_local, inner, inner_state)) continue;
+        if constexpr (Q == query::any) return true;
+        // Back in the scene's distances; rounding must not make a hit farther than t_best.
+        t_best = std::fmin(t_local / scale, t_best);
+        best = {shape_kind::instance, i};
+        state.inner = inner;
+        state.inner_t = t_local;
+        found = true;
+    }
+    return found;
+}
+
+template <query Q>
+bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, leaf_state& state) const {
     if (single_kind) {
         return with_shape_kind(*single_kind, [&](auto kind) {
             return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
@@ -139,8 +207,10 @@ bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, hit_recor
     });
 }
 
-inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref& best, surface_hit& hit) const {
+inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref& best, const leaf_state& state,
+                                         surface_hit& hit) const {
     hit.t = t;
+    hit.time = r.time;
     hit.user_shape = nullptr;
     hit.kind = best.kind;
     hit.index = best.index;
@@ -148,14 +218,44 @@ inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref&
     case shape_kind::sphere: spheres.complete_hit(r, t, best.index, hit); break;
     case shape_kind::triangle: triangles.complete_hit(r, t, best.index, hit); break;
     case shape_kind::quad: quads.complete_hit(r, t, best.index, hit); break;
+    case shape_kind::moving_sphere: moving_spheres.complete_hit(r, t, best.index, hit); break;
+    case shape_kind::instance: complete_instance_hit(r, state, best.index, hit); break;
     case shape_kind::user: complete_user_hit(user_shapes.shapes[best.index], hit.user_record, origin, hit); break;
     }
+}
+
+// The object's own hit, completed in its frame, carried out to the scene's: see instance_set.h.
+inline void compiled_scene::complete_instance_hit(const ray3f& r, const leaf_state& state, uint32_t i,
+                                                  surface_hit& hit) const {
+    ray3f local;
+    float scale;
+    instances.local_ray(i, r, local, scale); // it succeeded in the walk: the same ray again
+    surface_hit inner;
+    objects[instances.object[i]]->complete_hit(local, state.inner_t, state.inner, leaf_state{}, inner);
+    const affine3f& to_world = instances.to_world[i];
+    const affine3f& to_object = instances.to_object[i];
+    hit.p = to_world.point(inner.p);
+    // Normals as gradients, by the inverse transpose; each still faces the ray (the transform
+    // keeps which side of the surface a point is on), and front_face carries over.
+    hit.normal = normalize(to_object.transposed(inner.normal));
+    hit.shading_normal = normalize(to_object.transposed(inner.shading_normal));
+    hit.front_face = inner.front_face;
+    hit.material = inner.material;
+    // The error of the carried-out point, and of a spawned ray's origin carried back in.
+    const auto& a = to_world.m;
+    const vec3f a_p = {std::fabs(a[0][0] * inner.p.x) + std::fabs(a[0][1] * inner.p.y) + std::fabs(a[0][2] * inner.p.z),
+                       std::fabs(a[1][0] * inner.p.x) + std::fabs(a[1][1] * inner.p.y) + std::fabs(a[1][2] * inner.p.z),
+                       std::fabs(a[2][0] * inner.p.x) + std::fabs(a[2][1] * inner.p.y) + std::fabs(a[2][2] * inner.p.z)};
+    const float out_error = std::ldexp(max_abs_component(a_p) + max_abs_component(to_world.t), -21);
+    const float in_error =
+        std::ldexp(to_object.max_stretch() * max_abs_component(hit.p) + max_abs_component(to_object.t), -20);
+    hit.offset = to_world.max_stretch() * (inner.offset + in_error) + out_error;
 }
 
 // The user's hittables without a box, in double precision and world coordinates, after the BVH
 // found `hit` (if `found`); one of them wins if it is nearer.
 inline bool compiled_scene::intersect_unbounded(const ray3f& r, bool found, surface_hit& hit) const {
-    const ray world_ray(origin + r.origin.to_double(), r.dir.to_double());
+    const ray world_ray(origin + r.origin.to_double(), r.dir.to_double(), r.time);
     double closest = found ? hit.t : r.tmax;
     hit_record rec;
     const hittable* nearest = nullptr;
@@ -168,6 +268,7 @@ inline bool compiled_scene::intersect_unbounded(const ray3f& r, bool found, surf
     }
     if (!nearest) return found;
     complete_user_hit(nearest, hit.user_record, origin, hit);
+    hit.time = r.time;
     return true;
 }
 
@@ -175,19 +276,23 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
     hit.user_shape = nullptr;
     float t = r.tmax;
     hit_ref best;
-    bool found = trace<query::closest>(r, t, best, &hit.user_record);
-    if (found) complete_hit(r, t, best, hit);
+    leaf_state state;
+    state.user_record = &hit.user_record;
+    bool found = trace<query::closest>(r, t, best, state);
+    if (found) complete_hit(r, t, best, state, hit);
     if (!unbounded_user_shapes.empty()) found = intersect_unbounded(r, found, hit);
     return found;
 }
 
 inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const {
-    if (spheres.cull.empty() && triangles.cull.empty() && quads.cull.empty()) return intersect(r, hit);
+    if (!culls_back_faces) return intersect(r, hit);
     hit.user_shape = nullptr;
     float t = r.tmax;
     hit_ref best;
-    bool found = trace<query::closest_culled>(r, t, best, &hit.user_record); // user shapes: never culled
-    if (found) complete_hit(r, t, best, hit);
+    leaf_state state;
+    state.user_record = &hit.user_record; // user shapes: never culled
+    bool found = trace<query::closest_culled>(r, t, best, state);
+    if (found) complete_hit(r, t, best, state, hit);
     if (!unbounded_user_shapes.empty()) found = intersect_unbounded(r, found, hit);
     return found;
 }
@@ -195,9 +300,10 @@ inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface
 inline bool compiled_scene::occluded(const ray3f& r) const {
     float t = r.tmax;
     hit_ref best;
-    if (trace<query::any>(r, t, best, nullptr)) return true;
+    leaf_state state;
+    if (trace<query::any>(r, t, best, state)) return true;
     if (!unbounded_user_shapes.empty()) {
-        const ray world_ray(origin + r.origin.to_double(), r.dir.to_double());
+        const ray world_ray(origin + r.origin.to_double(), r.dir.to_double(), r.time);
         hit_record rec;
         for (const hittable* shape : unbounded_user_shapes)
             if (shape->hit(world_ray, interval(r.tmin, r.tmax), rec)) return true;
@@ -215,6 +321,10 @@ void compiled_scene::set_back_face_culling(Predicate cullable) {
     spheres.cull = flags(spheres.material, spheres.count);
     triangles.cull = flags(triangles.material, triangles.count);
     quads.cull = flags(quads.material, quads.count);
+    moving_spheres.cull = flags(moving_spheres.material, moving_spheres.count);
+    culls_back_faces = true;
+    // Objects are compiled for this scene (a copy of the scene shares them, and their marks).
+    for (auto& o : objects) o->set_back_face_culling(cullable);
 }
 
 } // namespace rt

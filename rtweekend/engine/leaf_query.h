@@ -14,11 +14,12 @@
 namespace rt {
 
 // The kinds of shape a BVH leaf can hold (each leaf holds one kind): built-in spheres, triangles
-// and quads, and user-written hittables with a bounding box. The leaf reference has room for
-// seven (bvh.h); the kinds to come (moving spheres, instances) each add a value here, a set of
-// their own and a case in compiled_scene's dispatch.
-enum class shape_kind : uint8_t { sphere = 0, triangle = 1, quad = 2, user = 3 };
-inline constexpr int shape_kind_count = 4;
+// and quads, user-written hittables with a bounding box, moving spheres (book 2's motion blur),
+// and instances (an object's own compiled geometry under an affine transform, instance_set.h).
+// The leaf reference has room for seven (bvh.h); a new kind adds a value here, a set of its own
+// and a case in compiled_scene's dispatch.
+enum class shape_kind : uint8_t { sphere = 0, triangle = 1, quad = 2, user = 3, moving_sphere = 4, instance = 5 };
+inline constexpr int shape_kind_count = 6;
 
 enum class query : uint8_t { closest, any, closest_culled };
 

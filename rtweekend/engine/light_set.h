@@ -37,6 +37,11 @@ struct light {
     float radius = 0;   // sphere
     vec3f emission;     // area lights: the radiance Le they emit; point lights: the intensity I
     bool two_sided = false;
+    // A textured emitter: its index in the compiled scene's texture table (UINT32_MAX: none, the
+    // constant `emission`), with `emission` then the texture's mean, which sets the light's power;
+    // and the index of its shape in its set, for the surface coordinates of a sampled point.
+    uint32_t texture = UINT32_MAX;
+    uint32_t shape = 0;
 
     bool is_delta() const { return kind == light_kind::point; }
     float area() const;
@@ -52,6 +57,11 @@ struct light_choice {
     float pdf = 0;         // solid-angle density of wi times the light's selection probability;
                            // for a point light, the selection probability alone
     bool delta = false;    // a point light: no material-sampled ray can find it
+    // For a textured area light (texture != UINT32_MAX), whose radiance the caller looks up: the
+    // light, the sampled point and its outward unit normal.
+    uint32_t texture = UINT32_MAX;
+    uint32_t light = 0;
+    vec3f y, n;
 };
 
 class light_set {
@@ -190,6 +200,12 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     s.radiance = front || l.two_sided ? l.emission : vec3f{0, 0, 0};
     s.pdf = pmf * ls.pdf;
     s.delta = false;
+    s.texture = l.texture;
+    if (l.texture != UINT32_MAX) {
+        s.light = t.members[slot];
+        s.y = ls.y;
+        s.n = ls.n;
+    }
     return true;
 }
 

@@ -19,6 +19,7 @@
 #include "rng.h"
 #include "scene_compiler.h"
 #include "scheduler.h"
+#include "surface_coordinates.h"
 #include "user_material.h"
 
 #include <chrono>
@@ -50,6 +51,7 @@ inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax) {
     r.dir = wi;
     r.tmin = 0;
     r.tmax = tmax;
+    r.time = hit.time; // the path's moment: shadow and continuation rays see the scene as it was
     return r;
 }
 
@@ -65,22 +67,64 @@ inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 :
 
 // The material at a path vertex, as the estimators ask it: a built-in material through the
 // contract (bsdf.h), a user's through its virtual functions (user_material.h).
+//
+// Smooth shading. A smooth mesh's interpolated normal ns (the shading normal) tilts away from the
+// triangle's own normal ng, so a lobe drawn about ns can dip below the surface, where a ray
+// would pass through it: rays lost (dark facets) or leaking. The rule here keeps every bit of
+// energy instead: a direction below the geometric surface is mirrored through it,
+// w -> w - 2 (w . ng) ng, and the material seen by the path is the folded one,
+//   f'(wi) = f(wi) + f(mirror(wi))   (wi above the surface; 0 below), pdf' likewise,
+// which reflects exactly what f reflects over the whole sphere (the mirror maps the lower half
+// onto the upper one and keeps solid angle). A Lambertian surface under shading normals thus
+// weighs every sample by its albedo exactly, as it does without them: a white furnace stays
+// white and no facet turns black. Delta lobes are mirrored back to the side they belong to
+// (reflection: the incoming side; refraction: the other). Light sampling and multiple importance
+// sampling see the same folded f' and pdf'. User materials get the shading normal as is.
 template <bool UserMaterials>
 struct vertex_material {
     const compiled_material& m;
     shading_point sp;
     vec3f wo;
     const user_material_hit* user; // set for a user's material, which has scattered already
+    vec3f ng;                      // the geometric normal, on wo's side
+    bool folded = false;           // shading normal differs from ng: fold as above
 
     bool is_user() const { return UserMaterials && user; }
     bool has_density() const { return is_user() ? user->has_density() : m.has_non_delta_lobe(); }
-    vec3f eval(const vec3f& wi) const { return is_user() ? user->eval(wi) : m.eval(wo, wi, sp); }
-    float pdf(const vec3f& wi) const { return is_user() ? user->pdf(wi) : m.pdf(wo, wi, sp); }
-    bool sample(pcg32& rng, material_sample& s) const { return is_user() ? user->sample(s) : m.sample(wo, sp, rng, s); }
+    vec3f mirror(const vec3f& w) const { return w - (2.0f * dot(w, ng)) * ng; }
+    vec3f eval(const vec3f& wi) const {
+        if (is_user()) return user->eval(wi);
+        if (!folded) return m.eval(wo, wi, sp);
+        if (!(dot(wi, ng) > 0)) return {0, 0, 0};
+        return m.eval(wo, wi, sp) + m.eval(wo, mirror(wi), sp);
+    }
+    float pdf(const vec3f& wi) const {
+        if (is_user()) return user->pdf(wi);
+        if (!folded) return m.pdf(wo, wi, sp);
+        if (!(dot(wi, ng) > 0)) return 0;
+        return m.pdf(wo, wi, sp) + m.pdf(wo, mirror(wi), sp);
+    }
+    bool sample(pcg32& rng, material_sample& s) const {
+        if (is_user()) return user->sample(s);
+        if (!m.sample(wo, sp, rng, s)) return false;
+        if (!folded) return true;
+        if (s.is_delta()) {
+            const float side = dot(s.wi, ng);
+            if (s.sampled == delta_transmission ? side > 0 : side < 0) s.wi = mirror(s.wi);
+            return true;
+        }
+        if (dot(s.wi, ng) < 0) s.wi = mirror(s.wi);
+        const float density = pdf(s.wi);
+        if (!(density > 0)) return false;
+        s.value = eval(s.wi) * (1.0f / density);
+        s.pdf = density;
+        return true;
+    }
 };
 
-// One path from the camera, estimated with E: the radiance it carries. Materials see the
-// geometric normal (the path tracer does not use smooth shading normals).
+// One path from the camera, estimated with E: the radiance it carries. Materials see the shading
+// normal (a smooth mesh's interpolated one, folded as vertex_material says; else the geometric
+// normal).
 template <path_estimator E, bool UserMaterials>
 vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pcg32& rng,
                  uint64_t& rays) {
@@ -89,6 +133,7 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
     surface_hit hit;
     std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
+    compiled_material looked_up;                // a textured material with its colour at the hit
     // The vertex the ray left from, for weighing an emitter it hits against light sampling there:
     // its position and the density its material drew the ray with. A camera ray, a ray after a
     // delta lobe, and every ray of the bsdf and mixture estimators count emission in full.
@@ -101,11 +146,15 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             return depth > 0 && env.camera_rays_only ? radiance : radiance + throughput * env.eval(r.dir);
 
         if (hit.user_shape) reported = compile_reported_material(hit.user_record);
-        const compiled_material& m = hit.user_shape ? *reported : scene.materials[hit.material];
+        const compiled_material& stored = hit.user_shape ? *reported : scene.materials[hit.material];
+        // A textured material is asked as a copy holding the texture's colour at this hit; an
+        // untextured one pays only this test.
+        if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
+        const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
         // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
         // inside it (directions are unit).
         if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
-        const shading_point sp{hit.normal, hit.front_face};
+        const shading_point sp{hit.shading_normal, hit.front_face};
         const vec3f wo = -r.dir;
 
         if (m.emits()) {
@@ -132,19 +181,24 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             radiance += throughput * user->emitted();
             if (!user->scatter()) return radiance;
         }
-        const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr};
+        const bool smooth = !(hit.shading_normal.x == hit.normal.x && hit.shading_normal.y == hit.normal.y &&
+                              hit.shading_normal.z == hit.normal.z);
+        const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
+                                                smooth && m.kind != material_kind::isotropic};
         const bool has_density = vm.has_density();
 
         // A light sample's contribution, if its shadow ray is clear: f Le / pdf, weighed by the
         // power heuristic against material sampling (a point light has no rival strategy).
         auto add_light_sample = [&](const light_choice& lc) {
-            if (is_black(lc.radiance)) return;
+            vec3f le = lc.radiance; // a textured light's: looked up at the sampled point
+            if (lc.texture != no_texture && !is_black(le)) le = textured_light_radiance(scene, lc);
+            if (is_black(le)) return;
             const vec3f f = vm.eval(lc.wi);
             if (is_black(f)) return;
             ++rays;
             if (scene.occluded(spawn_ray(hit, lc.wi, lc.distance * (1.0f - 1e-4f)))) return;
             const float weight = !lc.delta ? power_heuristic(lc.pdf, vm.pdf(lc.wi)) : 1.0f;
-            radiance += throughput * f * lc.radiance * (weight / lc.pdf);
+            radiance += throughput * f * le * (weight / lc.pdf);
         };
 
         // Next-event estimation: a point on a light, and a shadow ray to it.
@@ -212,12 +266,13 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     const compiled_scene scene = compile_scene(world, frame.position, point_lights);
     const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
     const bool user_code = scene.calls_user_code();
+    const bool with_time = scene.uses_time();
     auto render_with = [&](auto estimator) {
         constexpr path_estimator E = decltype(estimator)::value;
         return render_samples(
             frame.width, frame.height, settings,
             [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-                ray3f r = frame.sample_ray(x, y, spp, rng);
+                ray3f r = frame.sample_ray(x, y, spp, rng, with_time);
                 if (user_code) {
                     // User-written shapes and materials may call random_double(): give them this
                     // sample's generator so the image stays deterministic.

@@ -17,6 +17,7 @@
 // a shape without a material, mesh indices out of range) throws scene_error. Triangles of zero
 // area can never be hit: a mesh's are left out and counted, a single one is an error.
 
+#include "../bvh.h"
 #include "../hittable.h"
 #include "../hittable_list.h"
 #include "../material.h"
@@ -55,56 +56,78 @@ compiled_material compile_reported_material(const hit_record& rec);
 
 namespace detail {
 
-// A rigid motion x -> M x + t, in double: the translate and rotate_y nodes a shape sits under,
-// composed. The compiler applies it to the shapes themselves, so a moved box costs nothing at
-// render time.
-struct rigid_transform {
-    vec3 m[3] = {vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)}; // rows of M
+// An affine map x -> M x + t, in double: the transform nodes a shape sits under (translate,
+// rotate_y, transform, rotate, scale), composed. The compiler applies it to the shapes themselves
+// when it can (flattened, they cost nothing more at render time), or makes the subtree an
+// instance that keeps it (instance_set.h): see scene_compiler::must_instance.
+struct affine_map {
+    mat3 m; // M
     vec3 t{0, 0, 0};
     bool identity = true;
 
-    vec3 vector(const vec3& v) const { return identity ? v : vec3(dot(m[0], v), dot(m[1], v), dot(m[2], v)); }
-    point3 point(const point3& p) const { return identity ? p : vector(p) + t; }
-    // This transform after `inner` (inner applied first).
-    rigid_transform then(const rigid_transform& inner) const {
-        rigid_transform r;
-        for (int i = 0; i < 3; ++i) {
-            const vec3 col0(inner.m[0].x(), inner.m[1].x(), inner.m[2].x());
-            const vec3 col1(inner.m[0].y(), inner.m[1].y(), inner.m[2].y());
-            const vec3 col2(inner.m[0].z(), inner.m[1].z(), inner.m[2].z());
-            r.m[i] = vec3(dot(m[i], col0), dot(m[i], col1), dot(m[i], col2));
-        }
+    vec3 vector(const vec3& v) const { return identity ? v : m * v; }
+    point3 point(const point3& p) const { return identity ? p : m * p + t; }
+    // A normal through the map: by the inverse transpose (normals are gradients), unnormalised.
+    vec3 normal(const vec3& n) const { return identity ? n : m.inverse().transpose() * n; }
+    // This map after `inner` (inner applied first).
+    affine_map then(const affine_map& inner) const {
+        if (inner.identity) return *this;
+        if (identity) return inner;
+        affine_map r;
+        r.m = m * inner.m;
         r.t = vector(inner.t) + t;
-        r.identity = identity && inner.identity;
+        r.identity = false;
         return r;
     }
-    static rigid_transform translation(const vec3& offset) {
-        rigid_transform r;
+    static affine_map linear(const mat3& linear, const vec3& offset) {
+        affine_map r;
+        r.m = linear;
         r.t = offset;
         r.identity = false;
         return r;
     }
+    static affine_map translation(const vec3& offset) { return linear(mat3(), offset); }
     // rotate_y's object-to-world rotation: x' = cos x + sin z, z' = -sin x + cos z.
-    static rigid_transform rotation_y(double sin_theta, double cos_theta) {
-        rigid_transform r;
-        r.m[0] = vec3(cos_theta, 0, sin_theta);
-        r.m[2] = vec3(-sin_theta, 0, cos_theta);
-        r.identity = false;
-        return r;
+    static affine_map rotation_y(double sin_theta, double cos_theta) {
+        return linear(mat3(vec3(cos_theta, 0, sin_theta), vec3(0, 1, 0), vec3(-sin_theta, 0, cos_theta)), vec3(0, 0, 0));
+    }
+    // s when M is s times a rotation (M^T M = s^2 I and det M > 0), so that a sphere of radius r
+    // maps to the sphere of radius s r; 0 when it is not (a sphere would become an ellipsoid).
+    double sphere_scale() const {
+        if (identity) return 1;
+        const mat3 mtm = m.transpose() * m;
+        const double s2 = (mtm(0, 0) + mtm(1, 1) + mtm(2, 2)) / 3;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (!(std::fabs(mtm(i, j) - (i == j ? s2 : 0.0)) <= 1e-12 * s2)) return 0;
+        return m.determinant() > 0 ? std::sqrt(s2) : 0;
     }
 };
 
 class scene_compiler {
   public:
-    explicit scene_compiler(compiled_scene& out) : out_(out) {}
+    explicit scene_compiler(compiled_scene& out) : out_(out), root_(this) {}
 
-    void add(const hittable& object, const rigid_transform& xf = {}) {
+    // Counts, before add(world), how many parents name each node of the world: a subtree named
+    // more than once may become an instance (must_instance).
+    void count_uses(const hittable& object) {
+        for_each_child(object, [&](const hittable& child) {
+            if (++uses_[&child] == 1) count_uses(child);
+        });
+    }
+
+    void add(const hittable& object, const affine_map& xf = {}) {
         const std::type_info& type = typeid(object);
         if (type == typeid(hittable_list)) {
             for (const auto& child : static_cast<const hittable_list&>(object).objects) {
                 if (!child) throw scene_error("hittable_list holds a null object");
                 add(*child, xf);
             }
+        } else if (type == typeid(bvh_node)) {
+            // Book 2's tree: only its shapes matter here (the engine builds its own BVH).
+            const auto& node = static_cast<const bvh_node&>(object);
+            add(*node.left(), xf);
+            if (node.right() != node.left()) add(*node.right(), xf);
         } else if (type == typeid(sphere)) {
             add_sphere(static_cast<const sphere&>(object), xf);
         } else if (type == typeid(triangle)) {
@@ -118,18 +141,9 @@ class scene_compiler {
             add_quad(static_cast<const quad&>(object), xf);
         } else if (type == typeid(triangle_mesh)) {
             add_mesh(static_cast<const triangle_mesh&>(object), xf);
-        } else if ((type == typeid(translate) || type == typeid(rotate_y)) && built_in_only(object)) {
-            // A moved group of built-in shapes: moved here, once.
-            if (type == typeid(translate)) {
-                const auto& tr = static_cast<const translate&>(object);
-                if (!finite3(tr.offset())) throw scene_error("translate offset must be finite, got " + point_text(tr.offset()));
-                add(*tr.object(), xf.then(rigid_transform::translation(tr.offset())));
-            } else {
-                const auto& ro = static_cast<const rotate_y&>(object);
-                if (!(std::isfinite(ro.sin_theta()) && std::isfinite(ro.cos_theta())))
-                    throw scene_error("rotate_y angle must be finite, got " + std::to_string(ro.angle()));
-                add(*ro.object(), xf.then(rigid_transform::rotation_y(ro.sin_theta(), ro.cos_theta())));
-            }
+        } else if (const hittable* child = transformed_child(object); child && built_in_only(*child)) {
+            // A moved, turned or stretched group of built-in shapes.
+            place(*child, xf.then(transform_map(object)));
         } else {
             // A user's own hittable (or a transform over one): called through its virtual hit().
             // Under a transform, the whole transform node is the user shape.
@@ -148,12 +162,12 @@ class scene_compiler {
                 if (child && !built_in_only(*child)) return false;
             return true;
         }
-        if (type == typeid(translate)) {
-            const auto& child = static_cast<const translate&>(object).object();
-            return child && built_in_only(*child);
+        if (type == typeid(bvh_node)) {
+            const auto& node = static_cast<const bvh_node&>(object);
+            return built_in_only(*node.left()) && built_in_only(*node.right());
         }
-        if (type == typeid(rotate_y)) {
-            const auto& child = static_cast<const rotate_y&>(object).object();
+        if (is_transform(type)) {
+            const hittable* child = transformed_child(object);
             return child && built_in_only(*child);
         }
         return type == typeid(sphere) || type == typeid(triangle) || type == typeid(quad) ||
@@ -186,6 +200,20 @@ class scene_compiler {
             prims.push_back({b, shape_kind::quad, uint32_t(i)});
         }
         for (size_t i = 0; i < user_shapes_.size(); ++i) prims.push_back({user_shapes_[i].bounds, shape_kind::user, uint32_t(i)});
+        for (size_t i = 0; i < moving_spheres_.size(); ++i) {
+            const moving_sphere_input& s = moving_spheres_[i];
+            // Both ends of the motion, and a few ulps more: the kernel's centre c0 + time * m,
+            // in float, may stray that far from the exact line.
+            const double pad = s.r + std::ldexp(std::fmax(max_abs(s.c0), max_abs(s.c1)) + s.r, -20);
+            box3f b;
+            for (const vec3& c : {s.c0, s.c1})
+                b.grow({down(c.x() - pad), down(c.y() - pad), down(c.z() - pad)}),
+                    b.grow({up(c.x() + pad), up(c.y() + pad), up(c.z() + pad)});
+            prims.push_back({b, shape_kind::moving_sphere, uint32_t(i)});
+        }
+        for (size_t i = 0; i < instances_.size(); ++i)
+            prims.push_back({instance_bounds(instances_[i]), shape_kind::instance, uint32_t(i)});
+        for (const bvh_primitive& p : prims) out_.bounds.grow(p.bounds);
         out_.bvh = build_bvh8(prims);
         for (int k = 0; k < shape_kind_count; ++k)
             if (out_.bvh.order[size_t(k)].size() == prims.size() && !prims.empty())
@@ -211,7 +239,21 @@ class scene_compiler {
             for (size_t k = 0; k < pad; ++k) out_.quads.append_padding();
 
         for (uint32_t i : out_.bvh.order[size_t(shape_kind::user)]) out_.user_shapes.shapes.push_back(user_shapes_[i].shape);
-        find_lights();
+
+        const auto& moving_order = out_.bvh.order[size_t(shape_kind::moving_sphere)];
+        out_.moving_spheres.count = moving_order.size();
+        for (uint32_t i : moving_order) {
+            const moving_sphere_input& s = moving_spheres_[i];
+            out_.moving_spheres.append(vec3f(s.c0), vec3f(s.c1 - s.c0), float(s.r), s.material);
+        }
+        if (out_.moving_spheres.count > 0)
+            for (size_t k = 0; k < pad; ++k) out_.moving_spheres.append({}, {}, 0, 0, /*padding=*/true);
+        out_.has_motion = out_.has_motion || out_.moving_spheres.count > 0;
+
+        for (uint32_t i : out_.bvh.order[size_t(shape_kind::instance)]) push_instance(instances_[i]);
+        // An object's emitters are not light-sampled (compiled_scene::objects), nor moving ones:
+        // a path that hits one counts it in full.
+        if (root_ == this) find_lights();
     }
 
   private:
@@ -220,6 +262,189 @@ class scene_compiler {
         double r;
         uint32_t material;
     };
+    struct moving_sphere_input {
+        vec3 c0, c1; // the centre at times 0 and 1, relative to the scene origin
+        double r;
+        uint32_t material;
+    };
+    struct instance_input {
+        uint32_t object; // in out_.objects
+        affine_map map;  // object frame -> world
+    };
+    // What the compiler made of a subtree it instances: its object (none when everything in it
+    // was itself instanced), and the instances inside it, which are placed beside it in the
+    // scene (an object holds no instances: two levels, one walk each).
+    struct object_record {
+        uint32_t object = UINT32_MAX;
+        std::vector<std::pair<const hittable*, affine_map>> inner; // subtree, map into this object's frame
+    };
+    // Subtrees of more primitives than this, named more than once, are instanced; smaller ones
+    // are copied (six quads of a box cost less than the walk into an instance).
+    static constexpr size_t flatten_limit = 16;
+
+    // An object's compiler: its shapes go to `object`, its materials to the scene's table.
+    scene_compiler(compiled_scene& object, scene_compiler& root) : out_(object), root_(&root) {}
+
+    static double max_abs(const vec3& v) { return std::fmax(std::fabs(v.x()), std::fmax(std::fabs(v.y()), std::fabs(v.z()))); }
+
+    static bool is_transform(const std::type_info& type) {
+        return type == typeid(translate) || type == typeid(rotate_y) || type == typeid(transform) ||
+               type == typeid(rotate) || type == typeid(scale);
+    }
+    // The object under a transform node, or null for anything else.
+    static const hittable* transformed_child(const hittable& object) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(translate)) return static_cast<const translate&>(object).object().get();
+        if (type == typeid(rotate_y)) return static_cast<const rotate_y&>(object).object().get();
+        if (type == typeid(transform) || type == typeid(rotate) || type == typeid(scale))
+            return static_cast<const transform&>(object).object().get();
+        return nullptr;
+    }
+    // A transform node's map, checked.
+    static affine_map transform_map(const hittable& object) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(translate)) {
+            const auto& tr = static_cast<const translate&>(object);
+            if (!finite3(tr.offset())) throw scene_error("translate offset must be finite, got " + point_text(tr.offset()));
+            return affine_map::translation(tr.offset());
+        }
+        if (type == typeid(rotate_y)) {
+            const auto& ro = static_cast<const rotate_y&>(object);
+            if (!(std::isfinite(ro.sin_theta()) && std::isfinite(ro.cos_theta())))
+                throw scene_error("rotate_y angle must be finite, got " + std::to_string(ro.angle()));
+            return affine_map::rotation_y(ro.sin_theta(), ro.cos_theta());
+        }
+        const auto& tf = static_cast<const transform&>(object);
+        const mat3& m = tf.linear();
+        const mat3 inverse = m.inverse();
+        for (int i = 0; i < 3; ++i)
+            if (!finite3(m.row(i)) || !finite3(inverse.row(i)) || m.determinant() == 0)
+                throw scene_error(std::string(type == typeid(rotate) ? "rotate axis must be non-zero and its angle finite"
+                                              : type == typeid(scale) ? "scale factors must be finite and non-zero"
+                                                                      : "transform matrix must be finite and invertible") +
+                                  ", got rows " + point_text(m.row(0)) + " " + point_text(m.row(1)) + " " +
+                                  point_text(m.row(2)));
+        if (!finite3(tf.offset())) throw scene_error("transform offset must be finite, got " + point_text(tf.offset()));
+        return affine_map::linear(m, tf.offset());
+    }
+
+    // Calls f(child) for every object a list, book 2's tree or a transform node names.
+    template <class F>
+    static void for_each_child(const hittable& object, F&& f) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(hittable_list)) {
+            for (const auto& child : static_cast<const hittable_list&>(object).objects)
+                if (child) f(*child);
+        } else if (type == typeid(bvh_node)) {
+            const auto& node = static_cast<const bvh_node&>(object);
+            if (node.left()) f(*node.left());
+            if (node.right() && node.right() != node.left()) f(*node.right());
+        } else if (const hittable* child = transformed_child(object)) {
+            f(*child);
+        }
+    }
+    // Shapes in the subtree, through every node.
+    static size_t primitive_count(const hittable& object) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(triangle_mesh)) return static_cast<const triangle_mesh&>(object).faces.size();
+        if (type == typeid(hittable_list) || type == typeid(bvh_node) || is_transform(type)) {
+            size_t n = 0;
+            for_each_child(object, [&](const hittable& child) { n += primitive_count(child); });
+            return n;
+        }
+        return 1;
+    }
+    // Whether a sphere is reached through lists alone (one under a further transform is decided
+    // when that transform is reached).
+    static bool holds_spheres(const hittable& object) {
+        const std::type_info& type = typeid(object);
+        if (type == typeid(sphere)) return true;
+        if (type != typeid(hittable_list) && type != typeid(bvh_node)) return false;
+        bool found = false;
+        for_each_child(object, [&](const hittable& child) { found = found || holds_spheres(child); });
+        return found;
+    }
+
+    // Flatten or instance: a subtree is traced as an instance when its shapes cannot take the
+    // map exactly (a sphere under a map that is not a rotation times a uniform scale becomes an
+    // ellipsoid), when the map mirrors (flattened triangles would swap front and back; an
+    // instance keeps the object's own), or when it is named more than once and is large (one
+    // copy of a mesh serves every placement). Otherwise the map is applied to the shapes: what a
+    // single box or mesh costs today, the fastest to trace.
+    bool must_instance(const hittable& child, const affine_map& m) const {
+        if (m.identity) return false;
+        if (!(m.m.determinant() > 0)) return true;
+        if (holds_spheres(child) && !(m.sphere_scale() > 0)) return true;
+        const auto uses = root_->uses_.find(&child);
+        return uses != root_->uses_.end() && uses->second > 1 && primitive_count(child) > flatten_limit;
+    }
+
+    // The subtree `child` under the map m (object frame -> this compiler's frame).
+    void place(const hittable& child, const affine_map& m) {
+        if (!must_instance(child, m)) return add(child, m);
+        if (root_ != this) { // inside an object: the instance goes beside it (object_record)
+            lifted_.push_back({&child, m});
+            return;
+        }
+        const object_record record = object_of(child);
+        if (record.object != UINT32_MAX) instances_.push_back({record.object, m});
+        for (const auto& [inner, n] : record.inner) place(*inner, m.then(n));
+    }
+
+    // The object compiled from `child`, once per distinct subtree (by address).
+    object_record object_of(const hittable& child) {
+        if (auto found = objects_.find(&child); found != objects_.end()) return found->second;
+        auto object = std::make_shared<compiled_scene>(); // origin zero: the object's own frame
+        scene_compiler nested(*object, *this);
+        nested.add(child);
+        nested.finish();
+        object_record record;
+        record.inner = std::move(nested.lifted_);
+        if (object->bvh.root != bvh_ref::empty) {
+            record.object = uint32_t(out_.objects.size());
+            out_.has_motion = out_.has_motion || object->has_motion;
+            out_.objects.push_back(std::move(object));
+        }
+        objects_.emplace(&child, record);
+        return record;
+    }
+
+    // The box, in the scene's frame, around instance i's object: its eight corners mapped, and
+    // padded by a few ulps of their magnitude for the float maps the walk uses.
+    box3f instance_bounds(const instance_input& in) const {
+        const box3f& b = out_.objects[in.object]->bounds;
+        vec3 lo(infinity, infinity, infinity), hi(-infinity, -infinity, -infinity);
+        for (float x : {b.lo.x, b.hi.x})
+            for (float y : {b.lo.y, b.hi.y})
+                for (float z : {b.lo.z, b.hi.z}) {
+                    const vec3 corner = in.map.point(vec3(x, y, z)) - out_.origin;
+                    for (int c = 0; c < 3; ++c) lo[c] = std::fmin(lo[c], corner[c]), hi[c] = std::fmax(hi[c], corner[c]);
+                }
+        if (!(max_abs(lo) < max_float_extent && max_abs(hi) < max_float_extent))
+            throw scene_error("an instance is out of single-precision range: it must be within 1e18 of the camera");
+        const double pad = std::ldexp(std::fmax(max_abs(lo), max_abs(hi)), -20);
+        box3f out;
+        out.lo = {down(lo.x() - pad), down(lo.y() - pad), down(lo.z() - pad)};
+        out.hi = {up(hi.x() + pad), up(hi.y() + pad), up(hi.z() + pad)};
+        return out;
+    }
+
+    // The maps of an instance in float: object frame -> scene (relative to its origin), and back.
+    void push_instance(const instance_input& in) {
+        const mat3& a = in.map.m;
+        const vec3 b = in.map.t - out_.origin;
+        const mat3 inv = a.inverse();
+        const vec3 c = -(inv * b);
+        affine3f to_world, to_object;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                to_world.m[i][j] = static_cast<float>(a(i, j));
+                to_object.m[i][j] = static_cast<float>(inv(i, j));
+            }
+        to_world.t = vec3f(b);
+        to_object.t = vec3f(c);
+        out_.instances.append(to_world, to_object, in.object);
+    }
     struct quad_input {
         vec3 q, u, v; // corner relative to the scene origin, and edges, in double
         uint32_t material;
@@ -229,15 +454,17 @@ class scene_compiler {
         uint32_t material;
         std::array<vec3f, 3> n{}; // shading normals at the vertices (smooth meshes), else zero
         bool smooth = false;
+        std::array<std::array<float, 2>, 3> uv{}; // texture coordinates at the vertices, else zero
     };
 
     static float down(double x) { return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity()); }
     static float up(double x) { return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity()); }
 
     uint32_t material_index(const material* m) {
+        if (root_ != this) return root_->material_index(m); // one table for the scene and its objects
         auto found = index_.find(m);
         if (found != index_.end()) return found->second;
-        compiled_material d = compile_material(*m);
+        compiled_material d = compile_material(*m, &out_.textures);
         if (d.kind == material_kind::user) out_.has_user_materials = true;
         auto index = static_cast<uint32_t>(out_.materials.size());
         out_.materials.push_back(d);
@@ -245,17 +472,24 @@ class scene_compiler {
         return index;
     }
 
-    void add_sphere(const sphere& s, const rigid_transform& xf) {
-        if (!finite3(s.center())) throw scene_error("sphere centre must be finite, got " + point_text(s.center()));
+    void add_sphere(const sphere& s, const affine_map& xf) {
+        if (!finite3(s.center()) || !finite3(s.center(1)))
+            throw scene_error("sphere centre must be finite, got " + point_text(s.center()) +
+                              (s.is_moving() ? " moving to " + point_text(s.center(1)) : std::string()));
         if (!(std::isfinite(s.radius()) && s.radius() > 0))
             throw scene_error("sphere radius must be positive and finite, got " + std::to_string(s.radius()));
         if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
-        vec3 c = xf.point(s.center()) - out_.origin;
-        if (!(std::fmax(std::fabs(c.x()), std::fmax(std::fabs(c.y()), std::fabs(c.z()))) + s.radius() < max_float_extent))
+        const double radius = s.radius() * xf.sphere_scale(); // must_instance saw to it that the map keeps it round
+        const vec3 c = xf.point(s.center()) - out_.origin, c1 = xf.point(s.center(1)) - out_.origin;
+        if (!(std::fmax(max_abs(c), max_abs(c1)) + radius < max_float_extent))
             throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
                               " is out of single-precision range: its distance from the camera plus its radius must "
                               "be below 1e18");
-        spheres_.push_back({c, s.radius(), material_index(s.mat().get())});
+        if (s.is_moving()) {
+            moving_spheres_.push_back({c, c1, radius, material_index(s.mat().get())});
+            return;
+        }
+        spheres_.push_back({c, radius, material_index(s.mat().get())});
     }
 
     // False when the triangle has zero area in float (it could never be hit).
@@ -301,7 +535,7 @@ class scene_compiler {
         user_shapes_.push_back({&shape, b});
     }
 
-    void add_quad(const quad& q, const rigid_transform& xf) {
+    void add_quad(const quad& q, const affine_map& xf) {
         if (!finite3(q.corner()) || !finite3(q.edge_u()) || !finite3(q.edge_v()))
             throw scene_error("quad corner and edges must be finite, got " + point_text(q.corner()) + " " +
                               point_text(q.edge_u()) + " " + point_text(q.edge_v()));
@@ -336,8 +570,10 @@ class scene_compiler {
                 if (!m.emits()) continue;
                 if (table.empty()) table.assign(count, light_set::none);
                 light l = make(uint32_t(i));
-                l.emission = m.emission;
+                l.emission = m.emission; // a textured light: its texture's mean (material_compiler.h)
                 l.two_sided = m.two_sided;
+                l.texture = m.texture;
+                l.shape = uint32_t(i);
                 table[i] = lights.add(l);
             }
         };
@@ -372,7 +608,7 @@ class scene_compiler {
         });
     }
 
-    void add_mesh(const triangle_mesh& mesh, const rigid_transform& xf) {
+    void add_mesh(const triangle_mesh& mesh, const affine_map& xf) {
         if (!mesh.mat) throw scene_error("triangle mesh has no material");
         uint32_t m = material_index(mesh.mat.get());
         for (size_t i = 0; i < mesh.faces.size(); ++i) {
@@ -387,18 +623,34 @@ class scene_compiler {
                 continue;
             }
             if (mesh.smooth_shading && i < mesh.face_normals.size()) set_vertex_normals(mesh, i, xf);
+            if (i < mesh.face_uvs.size()) set_vertex_uvs(mesh, i);
         }
+    }
+
+    // A textured mesh's triangle takes its corners' (u, v); a corner without one gets (0, 0).
+    void set_vertex_uvs(const triangle_mesh& mesh, size_t face) {
+        triangle_input& t = triangles_.back();
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t index = mesh.face_uvs[face][k];
+            if (index >= mesh.uvs.size()) continue;
+            for (size_t c = 0; c < 2; ++c) {
+                const double x = mesh.uvs[index][c];
+                if (!std::isfinite(x)) throw scene_error("triangle mesh texture coordinate " + std::to_string(index) + " is not finite");
+                t.uv[k][c] = static_cast<float>(x);
+            }
+        }
+        any_uv_ = true;
     }
 
     // A smooth mesh's triangle takes its corners' normals; a corner without a usable normal gets
     // the face normal.
-    void set_vertex_normals(const triangle_mesh& mesh, size_t face, const rigid_transform& xf) {
+    void set_vertex_normals(const triangle_mesh& mesh, size_t face, const affine_map& xf) {
         triangle_input& t = triangles_.back();
         vec3f face_normal = vec3f(unit_vector(cross(t.v[1].to_double() - t.v[0].to_double(),
                                                     t.v[2].to_double() - t.v[0].to_double())));
         for (size_t k = 0; k < 3; ++k) {
             uint32_t index = mesh.face_normals[face][k];
-            vec3 n = index < mesh.normals.size() ? xf.vector(mesh.normals[index]) : vec3(0, 0, 0);
+            vec3 n = index < mesh.normals.size() ? xf.normal(mesh.normals[index]) : vec3(0, 0, 0);
             double len = n.length();
             t.n[k] = finite3(n) && len > 0 ? vec3f(n / len) : face_normal;
         }
@@ -410,6 +662,7 @@ class scene_compiler {
 
     void push_triangle(const triangle_input& t) {
         out_.triangles.append(t.v, t.material);
+        if (any_uv_) out_.triangles.append_uv(t.uv);
         if (!any_smooth_) return;
         std::array<vec3f, 3> n = t.n;
         if (!t.smooth) {
@@ -431,7 +684,14 @@ class scene_compiler {
         box3f bounds; // relative to the origin
     };
     std::vector<user_shape_input> user_shapes_;
+    std::vector<moving_sphere_input> moving_spheres_;
+    std::vector<instance_input> instances_;
+    scene_compiler* root_; // the scene's compiler (this one, or the one whose object this compiles)
+    std::unordered_map<const hittable*, uint32_t> uses_;         // root only: see count_uses
+    std::unordered_map<const hittable*, object_record> objects_; // root only: see object_of
+    std::vector<std::pair<const hittable*, affine_map>> lifted_; // an object's: instances inside it
     bool any_smooth_ = false;
+    bool any_uv_ = false; // some mesh has texture coordinates: the triangle set stores them all
 };
 
 } // namespace detail
@@ -442,6 +702,7 @@ inline compiled_scene compile_scene(const hittable& world, const point3& origin,
     compiled_scene scene;
     scene.origin = origin;
     detail::scene_compiler compiler(scene);
+    compiler.count_uses(world);
     compiler.add(world);
     compiler.finish();
     for (const point_light& p : point_lights) {

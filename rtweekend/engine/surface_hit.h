@@ -18,6 +18,7 @@ struct surface_hit {
                            // or a smooth mesh's interpolated vertex normals
     bool front_face = true;
     float offset = 0;      // extra push off the surface for spawned rays (the shape's own error)
+    float time = 0;        // the time of the ray that found the hit: rays spawned from it keep it
     uint32_t material = 0; // index into compiled_scene::materials
     shape_kind kind = shape_kind::sphere; // which shape was hit: its kind and index in its set
     uint32_t index = 0;

@@ -44,6 +44,9 @@ struct triangle_set {
     // Vertex normals, laid out like `vertex`, when some mesh has smooth_shading; else empty (and
     // the geometric normal is used).
     std::array<std::vector<float>, 9> normal;
+    // Texture coordinates: coordinate c (0: u, 1: v) of vertex k of triangle i is uv[2 * k + c][i],
+    // when some mesh has them; else empty (and every triangle's (u, v) is 0, as in the book).
+    std::array<std::vector<float>, 6> uv;
     // Back-face culling: 1 where a hit on the back face is skipped; empty until
     // compiled_scene::set_back_face_culling.
     std::vector<float> cull;
@@ -57,6 +60,14 @@ struct triangle_set {
         for (int k = 0; k < 3; ++k)
             for (int axis = 0; axis < 3; ++axis) normal[size_t(3 * k + axis)].push_back(n[size_t(k)][axis]);
     }
+    void append_uv(const std::array<std::array<float, 2>, 3>& t) {
+        for (size_t k = 0; k < 3; ++k)
+            for (size_t c = 0; c < 2; ++c) uv[2 * k + c].push_back(t[k][c]);
+    }
+
+    // The texture coordinates at the point p (relative to the scene origin) of triangle i: its
+    // vertices' uv weighted by p's barycentric coordinates; 0 when the triangles have none.
+    void surface_coordinates(uint32_t i, const vec3& p, double& u, double& v) const;
 
     // Tests triangles [first, first + n) against the ray (prepared as `tr`): see leaf_query.h.
     template <query Q>
@@ -70,6 +81,7 @@ struct triangle_set {
         size_t b = (material.size()) * sizeof(uint32_t) + cull.size() * sizeof(float);
         for (const auto& v : vertex) b += v.size() * sizeof(float);
         for (const auto& v : normal) b += v.size() * sizeof(float);
+        for (const auto& v : uv) b += v.size() * sizeof(float);
         return b;
     }
 
@@ -167,6 +179,20 @@ inline void triangle_set::complete_hit(const ray3f& ray, float t, uint32_t i, su
     }
     hit.offset = 0; // the barycentric point is within an ulp of the plane; the ray offset suffices
     hit.material = material[i];
+}
+
+inline void triangle_set::surface_coordinates(uint32_t i, const vec3& p, double& u, double& v) const {
+    u = v = 0;
+    if (uv[0].empty()) return;
+    // Barycentric coordinates by least squares in the triangle's plane (Ericson, Real-Time
+    // Collision Detection, 3.4): p is on the plane, up to rounding.
+    const vec3 a = corner(0, i), e1 = corner(1, i) - a, e2 = corner(2, i) - a, d = p - a;
+    const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(d, e1), d21 = dot(d, e2);
+    const double det = d00 * d11 - d01 * d01;
+    if (!(det > 0)) return;
+    const double b1 = (d11 * d20 - d01 * d21) / det, b2 = (d00 * d21 - d01 * d20) / det, b0 = 1 - b1 - b2;
+    u = b0 * uv[0][i] + b1 * uv[2][i] + b2 * uv[4][i];
+    v = b0 * uv[1][i] + b1 * uv[3][i] + b2 * uv[5][i];
 }
 
 } // namespace rt

@@ -21,6 +21,7 @@
 #include "../pdf.h"
 #include "bsdf.h"
 #include "compiled_scene.h"
+#include "surface_coordinates.h"
 #include "vec3f.h"
 
 #include <cmath>
@@ -60,26 +61,6 @@ namespace detail {
 inline std::shared_ptr<material> borrow(const material* m) {
     return std::shared_ptr<material>(std::shared_ptr<material>(), const_cast<material*>(m));
 }
-
-// The surface coordinates (u, v) of a built-in shape's hit, as the books define them: a sphere's
-// from its outward normal (book 2's get_sphere_uv), a quad's from its edges (book 2's alpha and
-// beta); 0 for triangles.
-inline void surface_coordinates(const compiled_scene& scene, const surface_hit& hit, hit_record& rec) {
-    rec.u = rec.v = 0;
-    const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
-    if (hit.kind == shape_kind::sphere) {
-        const double theta = std::acos(std::fmax(-1.0, std::fmin(1.0, double(-outward.y))));
-        const double phi = std::atan2(double(-outward.z), double(outward.x)) + pi;
-        rec.u = phi / (2 * pi);
-        rec.v = theta / pi;
-    } else if (hit.kind == shape_kind::quad) {
-        const vec3 q = scene.quads.corner(hit.index).to_double(), u = scene.quads.edge_u(hit.index).to_double(),
-                   v = scene.quads.edge_v(hit.index).to_double();
-        const vec3 n = cross(u, v), w = n / dot(n, n), rel = hit.p.to_double() - q;
-        rec.u = dot(w, cross(rel, v));
-        rec.v = dot(w, cross(u, rel));
-    }
-}
 } // namespace detail
 
 inline user_material_hit::user_material_hit(const compiled_scene& scene, const material& m, const ray3f& r,
@@ -93,9 +74,9 @@ inline user_material_hit::user_material_hit(const compiled_scene& scene, const m
         rec_.t = hit.t;
         rec_.front_face = hit.front_face;
         rec_.mat = detail::borrow(&m);
-        detail::surface_coordinates(scene, hit, rec_);
+        surface_coordinates(scene, hit, rec_.u, rec_.v);
     }
-    r_in_ = ray(scene.origin + r.origin.to_double(), r.dir.to_double());
+    r_in_ = ray(scene.origin + r.origin.to_double(), r.dir.to_double(), r.time);
 }
 
 inline vec3f user_material_hit::emitted() const { return vec3f(m_.emitted(r_in_, rec_, rec_.u, rec_.v, rec_.p)); }
@@ -120,7 +101,7 @@ inline bool user_material_hit::sample(material_sample& s) const {
 }
 
 inline vec3f user_material_hit::eval(const vec3f& wi) const {
-    const double density = m_.scattering_pdf(r_in_, rec_, ray(rec_.p, wi.to_double()));
+    const double density = m_.scattering_pdf(r_in_, rec_, ray(rec_.p, wi.to_double(), r_in_.time()));
     return vec3f(srec_.attenuation) * static_cast<float>(density);
 }
 

@@ -28,7 +28,7 @@ struct user_shape_set {
 #endif
     bool intersect_leaf(const ray3f& r, const vec3& origin, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
                         hit_record* record) const {
-        const ray world_ray(origin + r.origin.to_double(), r.dir.to_double());
+        const ray world_ray(origin + r.origin.to_double(), r.dir.to_double(), r.time);
         hit_record rec;
         bool found = false;
         for (uint32_t i = first; i < first + n; ++i) {

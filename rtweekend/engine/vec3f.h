@@ -42,12 +42,15 @@ inline vec3f normalize(const vec3f& v) { return v * (1.0f / length(v)); }
 inline float max_abs_component(const vec3f& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
 inline bool is_finite(const vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The renderer's ray: origin, unit direction, and the open parameter range (tmin, tmax).
+// The renderer's ray: origin, unit direction, the open parameter range (tmin, tmax), and the
+// moment in the shutter interval [0, 1) it samples (book 2's motion blur): only moving shapes
+// read it; every ray spawned along a path keeps its camera ray's time.
 struct ray3f {
     vec3f origin;
     vec3f dir;
     float tmin = 0;
     float tmax = std::numeric_limits<float>::infinity();
+    float time = 0;
 
     vec3f at(float t) const { return origin + t * dir; }
 };

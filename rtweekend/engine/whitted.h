@@ -35,6 +35,7 @@
 #include "rng.h"
 #include "scene_compiler.h"
 #include "scheduler.h"
+#include "surface_coordinates.h"
 #include "validate.h"
 
 #include <chrono>
@@ -134,6 +135,10 @@ inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whit
     ambient_light_ = vec3f(scene.ambient_light);
     shadow_ray_epsilon_ = float(scene.shadow_ray_epsilon);
     max_recursion_depth_ = scene.max_recursion_depth;
+    // The course's specular term is point-light shading here (whitted_terms), not the path
+    // tracer's glossy lobe: a course material is shaded through its Lambertian base alone.
+    for (compiled_material& m : compiled_.materials)
+        if (auto* w = dynamic_cast<const whitted_material*>(m.source)) m = w->compiled(false);
     for (const compiled_material& m : compiled_.materials) terms_.push_back(whitted_terms::of(m));
     for (const point_light& l : scene.lights) {
         if (!finite3(l.position)) throw scene_error("point light position must be finite");
@@ -152,6 +157,7 @@ inline ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side, 
     r.dir = dir;
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();
+    r.time = hit.time; // the time of the ray that found the hit
     return r;
 }
 
@@ -207,7 +213,11 @@ inline vec3f whitted_renderer::radiance(const surface_hit& hit, const ray3f& r, 
         reported = compile_reported_material(hit.user_record);
         reported_terms = whitted_terms::of(*reported);
     }
-    const compiled_material& m = hit.user_shape ? *reported : compiled_.materials[hit.material];
+    const compiled_material& stored = hit.user_shape ? *reported : compiled_.materials[hit.material];
+    // A textured lambertian or light: its colour at this hit.
+    std::optional<compiled_material> looked_up;
+    if (stored.texture != no_texture) looked_up = textured(compiled_, stored, hit);
+    const compiled_material& m = looked_up ? *looked_up : stored;
     const whitted_terms& terms = hit.user_shape ? *reported_terms : terms_[hit.material];
     vec3f L = shade(hit, r, m, terms, rays);
     if (depth >= max_recursion_depth_) return L;

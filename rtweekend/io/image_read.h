@@ -22,9 +22,9 @@
 //     raster. A P3 file must end after its raster, because extra values there almost always mean
 //     a header whose size is wrong. A PFM file must be exactly its header and raster.
 //
-// This header, not image.h, holds the readers so that camera.h and rtweekend.h do not compile
-// stb_image into every program: a program that includes them and then compiles its own
-// stb_image (as book 2's rtw_stb_image.h does) still builds.
+// This header, not image.h, holds the readers. stb_image comes through rtw_stb_image.h (which
+// texture.h includes too): a program that brings its own stb_image must define
+// STB_IMAGE_IMPLEMENTATION or include it before these headers.
 
 #include "../engine/image.h"
 #include "../scene_error.h"
@@ -54,35 +54,9 @@ loaded_image decode_image(const std::string& bytes, const std::string& name);
 
 // --- IMPLEMENTATION ---
 
-// stb_image decodes PNG and BMP. As image.h does with stb_image_write, this compiles a private,
-// static copy (PNG and BMP decoders only), unless the program brings its own: if stb_image.h was
-// already included, its declarations are used; if STB_IMAGE_IMPLEMENTATION is defined before
-// this header, that implementation is compiled here instead of ours.
-#ifndef STBI_INCLUDE_STB_IMAGE_H
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#ifndef STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#define STBI_ONLY_BMP
-#endif
-#if __has_include(<stb_image.h>)
-#include <stb_image.h>
-#else
-#include <stb/stb_image.h>
-#endif
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-#endif
+// stb_image decodes PNG and BMP: the copy rtw_stb_image.h compiles (or the program's own), so
+// that a program reading images and textures has one.
+#include "../rtw_stb_image.h"
 
 namespace rt {
 namespace detail {

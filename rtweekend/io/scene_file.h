@@ -11,7 +11,14 @@
 //                                max_depth n | background r g b | seed n |
 //                                adaptive_error e | adaptive_min_samples n
 //   background r g b             the same as camera background r g b
+//   texture NAME solid r g b     a named texture, used where a colour may vary as @NAME:
+//   texture NAME checker S <c> <c>      book 2's 3-D checker of cell size S; <c> is r g b or @NAME
+//   texture NAME image FILE             an image (PNG, JPEG, BMP, HDR...), relative to the scene file
+//   texture NAME noise S                book 2's marble (Perlin turbulence) at scale S
 //   sphere cx cy cz radius <material> [<transform>...]
+//   moving_sphere x1 y1 z1 x2 y2 z2 radius <material> [<transform>...]
+//                                book 2's moving sphere: centre (x1,y1,z1) at time 0, (x2,y2,z2)
+//                                at time 1 (the shutter is open from 0 to 1)
 //   triangle ax ay az bx by bz cx cy cz <material> [<transform>...]
 //   quad qx qy qz ux uy uz vx vy vz <material> [<transform>...]
 //                                book 2's quad: corner Q, edges u and v; its front face is the
@@ -21,21 +28,35 @@
 //   mesh file.obj <material> [<transform>...]
 //                                an OBJ mesh (or .ply: a PLY mesh); a relative path is relative to
 //                                the scene file
+//   medium density <c> <shape line>
+//                                book 2's constant_medium: fog of that density and albedo <c>
+//                                inside the shape (any shape directive above, from its keyword on;
+//                                its material is not used and the shape itself is not drawn)
+//   group NAME ... end           the shapes between are not drawn, but kept as NAME, for
+//   instance NAME [<transform>...]      placing as a whole, as many times as wanted (one copy)
 //   point_light x y z r g b      a point light of intensity (r, g, b): irradiance I cos / d^2
-// where <material> is <kind> and always five numbers (a material ignores those it does not use):
-//   lambertian r g b fuzz ior    albedo
+// where <material> is <kind> and five numbers (a material ignores those it does not use):
+//   lambertian r g b fuzz ior    albedo (r g b may be @NAME: a texture)
 //   metal r g b fuzz ior         albedo, fuzz
 //   dielectric r g b fuzz ior    ior: the book's glass (Schlick)
 //   glass ar ag ab 0 ior         ior and absorption per unit length (0 0 0: clear): exact
 //                                Fresnel and Beer's law, dielectric(ior, absorption)
 //   conductor r g b n k          tint and complex index n + ik: conductor(n, k, tint)
-//   diffuse_light r g b 0 0      an emitter of radiance (r, g, b) from its front face (book 3)
+//   plastic r g b 0 ior          a diffuse base of albedo r g b under a clear coat of index ior
+//   isotropic r g b 0 0          the phase function of fog (for media); r g b may be @NAME
+//   diffuse_light r g b 0 0      an emitter of radiance (r, g, b) from its front face (book 3);
+//                                r g b may be @NAME
 //   two_sided_light r g b 0 0    the same from both faces (book 2's diffuse_light)
+// or, with seven numbers:
+//   blinn_phong r g b sr sg sb n diffuse colour, specular colour, Blinn-Phong exponent n
 // and each <transform> moves the shape, applied in the order written (book 2's instances):
 //   rotate_y degrees             about the y axis, as rotate_y(object, degrees)
 //   translate x y z              as translate(object, offset)
+//   rotate ax ay az degrees      about the axis (ax, ay, az), as rotate(object, axis, degrees)
+//   scale sx sy sz               per axis, as scale(object, factors); non-zero factors
 
 #include "../camera.h"
+#include "../constant_medium.h"
 #include "../hittable_list.h"
 #include "../material.h"
 #include "../mesh.h"
@@ -43,6 +64,7 @@
 #include "../quad.h"
 #include "../scene_error.h"
 #include "../sphere.h"
+#include "../texture.h"
 #include "../transform.h"
 #include "../triangle.h"
 #include "obj.h"
@@ -55,6 +77,7 @@
 #include <cstring>
 #include <filesystem>
 #include <istream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -174,44 +197,140 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
     }
 }
 
-// The material at the end of a primitive line: <kind> r g b fuzz ior (conductor: r g b n k),
-// starting at field i.
-inline std::shared_ptr<material> parse_material(const scene_line& line, size_t i) {
-    const std::string& kind = line.word(i);
+inline point_light parse_point_light_line(const scene_line& line) {
+    line.expect_count(7, "point_light x y z r g b");
+    point_light l{line.vector(1, "point light position"), line.vector(4, "point light intensity")};
+    if (l.intensity.x() < 0 || l.intensity.y() < 0 || l.intensity.z() < 0)
+        line.fail("point light intensity must be non-negative");
+    return l;
+}
+
+// A scene file's state between lines: the named textures and groups defined so far, and the
+// group being filled (shapes go there instead of the world until `end`).
+class scene_parser {
+  public:
+    scene_parser(scene_description& scene, const std::string& name) : scene_(scene), name_(name) {}
+
+    void line(const scene_line& line);
+    void finish() const {
+        if (open_group_) throw scene_error(name_ + ": group '" + open_group_name_ + "' has no 'end'");
+    }
+
+  private:
+    scene_description& scene_;
+    std::string name_;
+    std::map<std::string, std::shared_ptr<texture>> textures_;
+    std::map<std::string, std::shared_ptr<hittable_list>> groups_;
+    std::shared_ptr<hittable_list> open_group_;
+    std::string open_group_name_;
+
+    void add(std::shared_ptr<hittable> object) {
+        if (open_group_) open_group_->add(std::move(object));
+        else scene_.world.add(std::move(object));
+    }
+    // A path in the file, relative to the scene file's directory unless absolute.
+    std::string resolve(const std::string& file) const {
+        std::filesystem::path path(file);
+        if (path.is_relative()) path = std::filesystem::path(name_).parent_path() / path;
+        return path.string();
+    }
+
+    // A colour at field i: three numbers, or @name for a texture defined earlier. Returns the
+    // texture (a solid_color for numbers) and moves i past it.
+    std::shared_ptr<texture> colour_or_texture(const scene_line& line, size_t& i, const char* what) const;
+    color plain_colour(const scene_line& line, size_t& i, const char* what) const;
+    std::shared_ptr<material> material_at(const scene_line& line, size_t& i) const;
+    std::shared_ptr<hittable> transforms_from(const scene_line& line, size_t i, std::shared_ptr<hittable> object) const;
+    // A shape directive starting at field i (sphere, moving_sphere, triangle, quad, box, mesh)
+    // with its material and transforms, to the end of the line.
+    std::shared_ptr<hittable> shape_at(const scene_line& line, size_t i) const;
+    void texture_line(const scene_line& line);
+};
+
+inline std::shared_ptr<texture> scene_parser::colour_or_texture(const scene_line& line, size_t& i, const char* what) const {
+    if (i < line.size() && line.word(i).size() > 1 && line.word(i)[0] == '@') {
+        const std::string name = line.word(i).substr(1);
+        auto found = textures_.find(name);
+        if (found == textures_.end()) line.fail(std::string(what) + ": no texture named '" + name + "' defined above");
+        ++i;
+        return found->second;
+    }
+    return std::make_shared<solid_color>(plain_colour(line, i, what));
+}
+
+inline color scene_parser::plain_colour(const scene_line& line, size_t& i, const char* what) const {
+    if (i + 3 > line.size()) line.fail(std::string(what) + ": expected r g b");
+    if (line.word(i)[0] == '@') line.fail(std::string(what) + " must be three numbers, not a texture");
+    color c = line.vector(i, what);
+    if (c.x() < 0 || c.y() < 0 || c.z() < 0) line.fail(std::string(what) + " must be non-negative");
+    i += 3;
+    return c;
+}
+
+// <kind> and its fields, from field i: most kinds take r g b fuzz ior (five numbers, a kind
+// ignoring those it does not use; r g b may be @texture where a colour can vary), conductor
+// r g b n k, blinn_phong r g b sr sg sb exponent.
+inline std::shared_ptr<material> scene_parser::material_at(const scene_line& line, size_t& i) const {
+    if (i >= line.size()) line.fail("expected a material");
+    const std::string kind = line.word(i++);
+    auto number = [&](const char* what) {
+        if (i >= line.size()) line.fail(std::string("expected ") + what + " after the material's colour");
+        return line.number(i++, what);
+    };
+    auto textured = [&](const char* what) {
+        std::shared_ptr<texture> tex = colour_or_texture(line, i, what);
+        number("fuzz");
+        number("ior");
+        return tex;
+    };
+    if (kind == "lambertian") return std::make_shared<lambertian>(textured("albedo"));
+    if (kind == "diffuse_light") return std::make_shared<diffuse_light>(textured("emission"));
+    if (kind == "two_sided_light") return std::make_shared<diffuse_light>(textured("emission"), true);
+    if (kind == "isotropic") return std::make_shared<isotropic>(textured("albedo"));
+    if (kind == "blinn_phong") {
+        color kd = plain_colour(line, i, "blinn_phong diffuse");
+        color ks = plain_colour(line, i, "blinn_phong specular");
+        double exponent = number("blinn_phong exponent");
+        if (!(exponent >= 0)) line.fail("blinn_phong exponent must be non-negative");
+        return std::make_shared<blinn_phong>(kd, ks, exponent);
+    }
     const bool is_conductor = kind == "conductor", is_glass = kind == "glass";
     const char* rgb_name = is_conductor ? "conductor tint" : is_glass ? "glass absorption" : "albedo";
-    color albedo = line.vector(i + 1, rgb_name);
-    if (albedo.x() < 0 || albedo.y() < 0 || albedo.z() < 0) line.fail(std::string(rgb_name) + " must be non-negative");
-    double fuzz = line.number(i + 4, is_conductor ? "conductor n" : "fuzz");
-    double ior = line.number(i + 5, is_conductor ? "conductor k" : "ior");
+    color albedo = plain_colour(line, i, rgb_name);
+    const size_t fuzz_at = i;
+    double fuzz = number(is_conductor ? "conductor n" : "fuzz");
+    double ior = number(is_conductor ? "conductor k" : "ior");
     if (is_conductor) {
-        if (!(fuzz > 0)) line.fail("conductor n must be positive, got " + line.word(i + 4));
-        if (!(ior >= 0)) line.fail("conductor k must be non-negative, got " + line.word(i + 5));
+        if (!(fuzz > 0)) line.fail("conductor n must be positive, got " + line.word(fuzz_at));
+        if (!(ior >= 0)) line.fail("conductor k must be non-negative, got " + line.word(fuzz_at + 1));
         return std::make_shared<conductor>(fuzz, ior, albedo);
     }
     if (is_glass) {
-        if (!(ior > 0)) line.fail("glass ior must be positive, got " + line.word(i + 5));
+        if (!(ior > 0)) line.fail("glass ior must be positive, got " + line.word(fuzz_at + 1));
         return std::make_shared<dielectric>(ior, albedo);
     }
-    if (kind == "lambertian") return std::make_shared<lambertian>(albedo);
-    if (kind == "diffuse_light") return std::make_shared<diffuse_light>(albedo);
-    if (kind == "two_sided_light") return std::make_shared<diffuse_light>(albedo, true);
     if (kind == "metal") {
-        if (fuzz < 0) line.fail("metal fuzz must be non-negative, got " + line.word(i + 4));
+        if (fuzz < 0) line.fail("metal fuzz must be non-negative, got " + line.word(fuzz_at));
         return std::make_shared<metal>(albedo, fuzz);
     }
     if (kind == "dielectric") {
-        if (!(ior > 0)) line.fail("dielectric ior must be positive, got " + line.word(i + 5));
+        if (!(ior > 0)) line.fail("dielectric ior must be positive, got " + line.word(fuzz_at + 1));
         return std::make_shared<dielectric>(ior);
     }
+    if (kind == "plastic") {
+        if (!(ior > 0)) line.fail("plastic ior must be positive, got " + line.word(fuzz_at + 1));
+        return std::make_shared<plastic>(albedo, ior);
+    }
     line.fail("unknown material '" + kind +
-              "' (expected lambertian, metal, dielectric, glass, conductor, diffuse_light or two_sided_light)");
+              "' (expected lambertian, metal, dielectric, glass, conductor, plastic, blinn_phong, isotropic, "
+              "diffuse_light or two_sided_light)");
 }
 
-// The transforms after field `first` (rotate_y degrees | translate x y z), applied to `object`
-// in the order written.
-inline std::shared_ptr<hittable> parse_transforms(const scene_line& line, size_t first, std::shared_ptr<hittable> object) {
-    for (size_t i = first; i < line.size();) {
+// The transforms from field i (rotate_y degrees | translate x y z | rotate ax ay az degrees |
+// scale sx sy sz), applied to `object` in the order written.
+inline std::shared_ptr<hittable> scene_parser::transforms_from(const scene_line& line, size_t i,
+                                                               std::shared_ptr<hittable> object) const {
+    while (i < line.size()) {
         const std::string& word = line.word(i);
         if (word == "rotate_y") {
             if (i + 1 >= line.size()) line.fail("rotate_y needs an angle in degrees");
@@ -221,65 +340,180 @@ inline std::shared_ptr<hittable> parse_transforms(const scene_line& line, size_t
             if (i + 3 >= line.size()) line.fail("translate needs x y z");
             object = std::make_shared<translate>(std::move(object), line.vector(i + 1, "translate offset"));
             i += 4;
+        } else if (word == "rotate") {
+            if (i + 4 >= line.size()) line.fail("rotate needs an axis x y z and an angle in degrees");
+            const vec3 axis = line.vector(i + 1, "rotate axis");
+            if (axis.length_squared() == 0) line.fail("rotate axis must be non-zero");
+            object = std::make_shared<rotate>(std::move(object), axis, line.number(i + 4, "rotate angle"));
+            i += 5;
+        } else if (word == "scale") {
+            if (i + 3 >= line.size()) line.fail("scale needs factors x y z");
+            const vec3 factors = line.vector(i + 1, "scale factors");
+            if (factors.x() == 0 || factors.y() == 0 || factors.z() == 0) line.fail("scale factors must be non-zero");
+            object = std::make_shared<scale>(std::move(object), factors);
+            i += 4;
         } else {
-            line.fail("unexpected '" + word + "' after the material (expected rotate_y or translate)");
+            line.fail("unexpected '" + word + "' (expected rotate_y, translate, rotate or scale)");
         }
     }
     return object;
 }
 
-inline std::shared_ptr<hittable> parse_sphere_line(const scene_line& line) {
-    line.expect_at_least(11, "sphere cx cy cz radius material r g b fuzz ior");
-    point3 center = line.vector(1, "sphere centre");
-    double radius = line.number(4, "sphere radius");
-    if (!(radius > 0)) line.fail("sphere radius must be positive, got " + line.word(4));
-    return parse_transforms(line, 11, std::make_shared<sphere>(center, radius, parse_material(line, 5)));
+inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, size_t i) const {
+    const std::string& kind = line.word(i);
+    auto need = [&](size_t fields, const char* form) {
+        if (line.size() < i + fields) line.fail(std::string("expected '") + form + "'");
+    };
+    if (kind == "sphere") {
+        need(6, "sphere cx cy cz radius material ...");
+        point3 center = line.vector(i + 1, "sphere centre");
+        double radius = line.number(i + 4, "sphere radius");
+        if (!(radius > 0)) line.fail("sphere radius must be positive, got " + line.word(i + 4));
+        size_t at = i + 5;
+        auto mat = material_at(line, at);
+        return transforms_from(line, at, std::make_shared<sphere>(center, radius, std::move(mat)));
+    }
+    if (kind == "moving_sphere") {
+        need(9, "moving_sphere x1 y1 z1 x2 y2 z2 radius material ...");
+        point3 c1 = line.vector(i + 1, "moving_sphere centre at time 0");
+        point3 c2 = line.vector(i + 4, "moving_sphere centre at time 1");
+        double radius = line.number(i + 7, "moving_sphere radius");
+        if (!(radius > 0)) line.fail("moving_sphere radius must be positive, got " + line.word(i + 7));
+        size_t at = i + 8;
+        auto mat = material_at(line, at);
+        return transforms_from(line, at, std::make_shared<sphere>(c1, c2, radius, std::move(mat)));
+    }
+    if (kind == "triangle") {
+        need(11, "triangle ax ay az bx by bz cx cy cz material ...");
+        point3 a = line.vector(i + 1, "triangle vertex"), b = line.vector(i + 4, "triangle vertex"),
+               c = line.vector(i + 7, "triangle vertex");
+        if (cross(b - a, c - a).length_squared() == 0) line.fail("triangle has zero area");
+        size_t at = i + 10;
+        auto mat = material_at(line, at);
+        return transforms_from(line, at, std::make_shared<triangle>(a, b, c, std::move(mat)));
+    }
+    if (kind == "quad") {
+        need(11, "quad qx qy qz ux uy uz vx vy vz material ...");
+        point3 q = line.vector(i + 1, "quad corner");
+        vec3 u = line.vector(i + 4, "quad edge u"), v = line.vector(i + 7, "quad edge v");
+        if (cross(u, v).length_squared() == 0) line.fail("quad has zero area: its edges are parallel or zero");
+        size_t at = i + 10;
+        auto mat = material_at(line, at);
+        return transforms_from(line, at, std::make_shared<quad>(q, u, v, std::move(mat)));
+    }
+    if (kind == "box") {
+        need(8, "box ax ay az bx by bz material ...");
+        point3 a = line.vector(i + 1, "box corner"), b = line.vector(i + 4, "box corner");
+        if (a.x() == b.x() || a.y() == b.y() || a.z() == b.z()) line.fail("box corners must differ in x, y and z");
+        size_t at = i + 7;
+        auto mat = material_at(line, at);
+        return transforms_from(line, at, box(a, b, std::move(mat)));
+    }
+    if (kind == "mesh") {
+        need(3, "mesh file.obj material ...");
+        const std::string file = resolve(line.word(i + 1));
+        size_t at = i + 2;
+        std::shared_ptr<material> mat = material_at(line, at);
+        std::shared_ptr<hittable> mesh;
+        try {
+            // By extension: Stanford PLY, or else Wavefront OBJ.
+            std::string ext = std::filesystem::path(file).extension().string();
+            for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            mesh = ext == ".ply" ? load_ply(file, std::move(mat)) : load_obj(file, std::move(mat));
+        } catch (const scene_error& e) {
+            line.fail(e.what());
+        }
+        return transforms_from(line, at, std::move(mesh));
+    }
+    line.fail("unknown shape '" + kind + "' (expected sphere, moving_sphere, triangle, quad, box or mesh)");
 }
 
-inline std::shared_ptr<hittable> parse_triangle_line(const scene_line& line) {
-    line.expect_at_least(16, "triangle ax ay az bx by bz cx cy cz material r g b fuzz ior");
-    point3 a = line.vector(1, "triangle vertex"), b = line.vector(4, "triangle vertex"), c = line.vector(7, "triangle vertex");
-    if (cross(b - a, c - a).length_squared() == 0) line.fail("triangle has zero area");
-    return parse_transforms(line, 16, std::make_shared<triangle>(a, b, c, parse_material(line, 10)));
+// texture NAME solid r g b | checker SCALE <colour> <colour> | image FILE | noise SCALE
+inline void scene_parser::texture_line(const scene_line& line) {
+    line.expect_at_least(3, "texture name kind ...");
+    const std::string& name = line.word(1);
+    const std::string& kind = line.word(2);
+    if (textures_.count(name)) line.fail("texture '" + name + "' is already defined");
+    std::shared_ptr<texture> tex;
+    size_t i = 3;
+    if (kind == "solid") {
+        tex = std::make_shared<solid_color>(plain_colour(line, i, "solid colour"));
+    } else if (kind == "checker") {
+        line.expect_at_least(6, "texture name checker scale even odd");
+        double scale = line.number(3, "checker scale");
+        if (!(scale > 0)) line.fail("checker scale must be positive, got " + line.word(3));
+        i = 4;
+        auto even = colour_or_texture(line, i, "checker even colour");
+        auto odd = colour_or_texture(line, i, "checker odd colour");
+        tex = std::make_shared<checker_texture>(scale, even, odd);
+    } else if (kind == "image") {
+        line.expect_count(4, "texture name image file");
+        try {
+            tex = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
+        } catch (const scene_error& e) {
+            line.fail(e.what());
+        }
+        i = 4;
+    } else if (kind == "noise") {
+        line.expect_count(4, "texture name noise scale");
+        double scale = line.number(3, "noise scale");
+        if (!(scale >= 0)) line.fail("noise scale must be non-negative, got " + line.word(3));
+        tex = std::make_shared<noise_texture>(scale);
+        i = 4;
+    } else {
+        line.fail("unknown texture kind '" + kind + "' (expected solid, checker, image or noise)");
+    }
+    if (i != line.size()) line.fail("unexpected '" + line.word(i) + "' after the texture");
+    textures_[name] = tex;
 }
 
-inline std::shared_ptr<hittable> parse_quad_line(const scene_line& line) {
-    line.expect_at_least(16, "quad qx qy qz ux uy uz vx vy vz material r g b fuzz ior");
-    point3 q = line.vector(1, "quad corner");
-    vec3 u = line.vector(4, "quad edge u"), v = line.vector(7, "quad edge v");
-    if (cross(u, v).length_squared() == 0) line.fail("quad has zero area: its edges are parallel or zero");
-    return parse_transforms(line, 16, std::make_shared<quad>(q, u, v, parse_material(line, 10)));
-}
-
-inline std::shared_ptr<hittable> parse_box_line(const scene_line& line) {
-    line.expect_at_least(13, "box ax ay az bx by bz material r g b fuzz ior");
-    point3 a = line.vector(1, "box corner"), b = line.vector(4, "box corner");
-    if (a.x() == b.x() || a.y() == b.y() || a.z() == b.z()) line.fail("box corners must differ in x, y and z");
-    return parse_transforms(line, 13, box(a, b, parse_material(line, 7)));
-}
-
-inline point_light parse_point_light_line(const scene_line& line) {
-    line.expect_count(7, "point_light x y z r g b");
-    point_light l{line.vector(1, "point light position"), line.vector(4, "point light intensity")};
-    if (l.intensity.x() < 0 || l.intensity.y() < 0 || l.intensity.z() < 0)
-        line.fail("point light intensity must be non-negative");
-    return l;
-}
-
-// `mesh file.obj material r g b fuzz ior`; the OBJ path is relative to the scene file.
-inline std::shared_ptr<hittable> parse_mesh_line(const scene_line& line, const std::string& scene_name) {
-    line.expect_at_least(8, "mesh file.obj material r g b fuzz ior");
-    std::filesystem::path obj(line.word(1));
-    if (obj.is_relative()) obj = std::filesystem::path(scene_name).parent_path() / obj;
-    std::shared_ptr<material> mat = parse_material(line, 2);
-    try {
-        // By extension: Stanford PLY, or else Wavefront OBJ.
-        std::string ext = obj.extension().string();
-        for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-        if (ext == ".ply") return parse_transforms(line, 8, load_ply(obj.string(), std::move(mat)));
-        return parse_transforms(line, 8, load_obj(obj.string(), std::move(mat)));
-    } catch (const scene_error& e) {
-        line.fail(e.what());
+inline void scene_parser::line(const scene_line& line) {
+    const std::string& word = line.word(0);
+    if (word == "camera") {
+        parse_camera_line(line, scene_.cam);
+    } else if (word == "sphere" || word == "moving_sphere" || word == "triangle" || word == "quad" || word == "box" ||
+               word == "mesh") {
+        add(shape_at(line, 0));
+    } else if (word == "texture") {
+        texture_line(line);
+    } else if (word == "medium") {
+        // medium density <colour> <shape ...>: the shape bounds the medium (its material is not
+        // used) and is not itself added to the scene.
+        line.expect_at_least(6, "medium density r g b shape ...");
+        double density = line.number(1, "medium density");
+        if (!(density > 0)) line.fail("medium density must be positive, got " + line.word(1));
+        size_t i = 2;
+        auto albedo = colour_or_texture(line, i, "medium albedo");
+        if (i >= line.size()) line.fail("medium needs a boundary shape after its colour");
+        add(std::make_shared<constant_medium>(shape_at(line, i), density, albedo));
+    } else if (word == "group") {
+        line.expect_count(2, "group name");
+        if (open_group_) line.fail("groups do not nest: 'end' group '" + open_group_name_ + "' first");
+        if (groups_.count(line.word(1))) line.fail("group '" + line.word(1) + "' is already defined");
+        open_group_ = std::make_shared<hittable_list>();
+        open_group_name_ = line.word(1);
+        groups_[open_group_name_] = open_group_;
+    } else if (word == "end") {
+        line.expect_count(1, "end");
+        if (!open_group_) line.fail("'end' without a group");
+        open_group_.reset();
+    } else if (word == "instance") {
+        line.expect_at_least(2, "instance name [transforms]");
+        auto found = groups_.find(line.word(1));
+        if (found == groups_.end()) line.fail("no group named '" + line.word(1) + "' defined above");
+        if (found->second == open_group_) line.fail("group '" + line.word(1) + "' cannot hold an instance of itself");
+        add(transforms_from(line, 2, found->second));
+    } else if (word == "point_light") {
+        scene_.point_lights.push_back(parse_point_light_line(line));
+    } else if (word == "background") {
+        line.expect_count(4, "background r g b");
+        color bg = line.vector(1, "background");
+        if (bg.x() < 0 || bg.y() < 0 || bg.z() < 0) line.fail("background must be non-negative");
+        scene_.cam.background = bg;
+    } else {
+        line.fail("unknown directive '" + word +
+                  "' (expected camera, background, texture, sphere, moving_sphere, triangle, quad, box, mesh, "
+                  "medium, group, end, instance or point_light)");
     }
 }
 
@@ -287,6 +521,7 @@ inline std::shared_ptr<hittable> parse_mesh_line(const scene_line& line, const s
 
 inline scene_description parse_scene(std::istream& in, const std::string& name) {
     scene_description scene;
+    detail::scene_parser parser(scene, name);
     std::string text;
     int number = 0;
     while (std::getline(in, text)) {
@@ -297,24 +532,10 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
         std::vector<std::string> tokens;
         for (std::string w; words >> w;) tokens.push_back(w);
         if (tokens.empty()) continue;
-        detail::scene_line line(name, number, std::move(tokens));
-        if (line.word(0) == "camera") detail::parse_camera_line(line, scene.cam);
-        else if (line.word(0) == "sphere") scene.world.add(detail::parse_sphere_line(line));
-        else if (line.word(0) == "triangle") scene.world.add(detail::parse_triangle_line(line));
-        else if (line.word(0) == "mesh") scene.world.add(detail::parse_mesh_line(line, name));
-        else if (line.word(0) == "quad") scene.world.add(detail::parse_quad_line(line));
-        else if (line.word(0) == "box") scene.world.add(detail::parse_box_line(line));
-        else if (line.word(0) == "point_light") scene.point_lights.push_back(detail::parse_point_light_line(line));
-        else if (line.word(0) == "background") {
-            line.expect_count(4, "background r g b");
-            color bg = line.vector(1, "background");
-            if (bg.x() < 0 || bg.y() < 0 || bg.z() < 0) line.fail("background must be non-negative");
-            scene.cam.background = bg;
-        } else
-            line.fail("unknown directive '" + line.word(0) +
-                      "' (expected camera, background, sphere, triangle, quad, box, mesh or point_light)");
+        parser.line(detail::scene_line(name, number, std::move(tokens)));
     }
     if (in.bad()) throw scene_error(name + ": read error");
+    parser.finish();
     return scene;
 }
 

@@ -1,0 +1,190 @@
+#pragma once
+// rtw_image: an image file read for texturing (book 2's rtw_stb_image.h), decoded by stb_image.
+//
+//   rtw_image img("earthmap.jpg");   throws scene_error naming the file when it is missing or
+//                                    cannot be decoded (the book prints a message and goes on)
+//   img.width(), img.height()        in pixels (0 for a default-constructed image)
+//   img.pixel_data(x, y)             the pixel's three bytes, red first, sRGB-encoded; x and y are
+//                                    clamped into the image; row 0 is the top
+//   img.linear(x, y)                 the pixel's linear RGB, what a texture returns
+//   img.linear_pixels()              every pixel's linear RGB, rows top to bottom, shared so that the
+//                                    renderer can keep them alive (engine/texture_table.h)
+//
+// Where the file is looked for, as in the book: in $RTW_IMAGES if that is set, then the name as
+// given, then images/, ../images/, and so on up to six parents.
+//
+// What the numbers mean. An 8-bit file (PNG, JPEG, BMP, TGA, PNM) stores sRGB-encoded values:
+// linear() decodes them with the exact sRGB curve (IEC 61966-2-1), so the byte 128 is 0.2158605,
+// not the 0.5 a plain division gives. The book instead asks stb_image for floats, which applies
+// a 2.2 power, then quantises them to linear bytes; ours keeps the file's bytes and decodes once.
+// A Radiance .hdr file stores linear radiance: linear() returns it unchanged (and unclamped), and
+// pixel_data() holds its sRGB encoding, clamped to [0, 1].
+
+#include "scene_error.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+class rtw_image {
+  public:
+    rtw_image() = default;
+    explicit rtw_image(const char* image_filename);
+
+    // Reads `filename`: false when it cannot be opened; throws scene_error when it can but is not
+    // an image stb_image decodes.
+    bool load(const std::string& filename);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const unsigned char* pixel_data(int x, int y) const;
+
+    struct rgb {
+        float r, g, b;
+    };
+    rgb linear(int x, int y) const;
+    const std::shared_ptr<const std::vector<float>>& linear_pixels() const { return linear_; }
+    const std::string& path() const { return path_; }
+
+  private:
+    int width_ = 0, height_ = 0;
+    std::vector<unsigned char> bytes_;               // sRGB-encoded RGB, 3 per pixel
+    std::shared_ptr<const std::vector<float>> linear_; // linear RGB, 3 per pixel
+    std::string path_;                               // where it was read from
+
+    static int clamp_index(int i, int n) { return i < 0 ? 0 : i < n ? i : n - 1; }
+};
+
+// The sRGB transfer functions (IEC 61966-2-1): code value in [0, 1] to linear light and back.
+double srgb_to_linear(double encoded);
+double linear_to_srgb(double linear);
+
+} // namespace rt
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+// stb_image decodes the files. As image.h does with stb_image_write, this compiles a private,
+// static copy, unless the program brings its own: if stb_image.h was already included, its
+// declarations are used; if STB_IMAGE_IMPLEMENTATION is defined before this header, that
+// implementation is compiled here instead of ours. io/image_read.h uses this same copy. The
+// decoders are those a texture is likely to come in; functions a program never calls are not
+// compiled into it (they are static), so the cost is parsing them.
+#ifndef STBI_INCLUDE_STB_IMAGE_H
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+#endif
+#ifndef STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_ONLY_BMP
+#define STBI_ONLY_JPEG
+#define STBI_ONLY_TGA
+#define STBI_ONLY_PNM
+#define STBI_ONLY_HDR
+#endif
+#if __has_include(<stb_image.h>)
+#include <stb_image.h>
+#else
+#include <stb/stb_image.h>
+#endif
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+#endif
+
+namespace rt {
+
+inline double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+inline double linear_to_srgb(double x) {
+    if (!(x > 0)) return 0;
+    if (x >= 1) return 1;
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+}
+
+inline rtw_image::rtw_image(const char* image_filename) {
+    const std::string name(image_filename ? image_filename : "");
+    if (name.empty()) throw scene_error("image texture: no file name given");
+    const char* dir = std::getenv("RTW_IMAGES");
+    if (dir && load(std::string(dir) + "/" + name)) return;
+    if (load(name)) return;
+    std::string prefix;
+    for (int up = 0; up <= 6; ++up, prefix += "../")
+        if (load(prefix + "images/" + name)) return;
+    throw scene_error("cannot read image texture '" + name + "': file not found (looked " +
+                      (dir ? "in $RTW_IMAGES, " : "") + "here and in images/ up to six parents)");
+}
+
+inline bool rtw_image::load(const std::string& filename) {
+    std::FILE* f = std::fopen(filename.c_str(), "rb");
+    if (!f) return false;
+    int w = 0, h = 0, channels = 0;
+    const bool hdr = stbi_is_hdr_from_file(f) != 0; // rewinds the file
+    std::vector<float> lin;
+    std::vector<unsigned char> bytes;
+    if (hdr) {
+        float* data = stbi_loadf_from_file(f, &w, &h, &channels, 3);
+        if (data) {
+            lin.assign(data, data + size_t(w) * size_t(h) * 3);
+            stbi_image_free(data);
+            bytes.resize(lin.size());
+            for (size_t i = 0; i < lin.size(); ++i)
+                bytes[i] = static_cast<unsigned char>(std::lround(255 * linear_to_srgb(lin[i])));
+        }
+    } else {
+        unsigned char* data = stbi_load_from_file(f, &w, &h, &channels, 3);
+        if (data) {
+            bytes.assign(data, data + size_t(w) * size_t(h) * 3);
+            stbi_image_free(data);
+            // Decoded once per byte value, not once per pixel.
+            float table[256];
+            for (int c = 0; c < 256; ++c) table[c] = static_cast<float>(srgb_to_linear(c / 255.0));
+            lin.resize(bytes.size());
+            for (size_t i = 0; i < bytes.size(); ++i) lin[i] = table[bytes[i]];
+        }
+    }
+    std::fclose(f);
+    if (bytes.empty()) {
+        const char* reason = stbi_failure_reason();
+        throw scene_error("cannot read image texture '" + filename + "': " +
+                          (reason && *reason ? reason : "not an image stb_image can decode"));
+    }
+    width_ = w;
+    height_ = h;
+    bytes_ = std::move(bytes);
+    linear_ = std::make_shared<const std::vector<float>>(std::move(lin));
+    path_ = filename;
+    return true;
+}
+
+inline const unsigned char* rtw_image::pixel_data(int x, int y) const {
+    // The book shows magenta where there is no image; a loaded rtw_image always has pixels.
+    static const unsigned char magenta[] = {255, 0, 255};
+    if (bytes_.empty()) return magenta;
+    return &bytes_[(size_t(clamp_index(y, height_)) * size_t(width_) + size_t(clamp_index(x, width_))) * 3];
+}
+
+inline rtw_image::rgb rtw_image::linear(int x, int y) const {
+    if (!linear_) return {1, 0, 1};
+    const float* p = &(*linear_)[(size_t(clamp_index(y, height_)) * size_t(width_) + size_t(clamp_index(x, width_))) * 3];
+    return {p[0], p[1], p[2]};
+}
+
+} // namespace rt
+
+#ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::rtw_image;
+#endif
