@@ -36,12 +36,14 @@
 #include "material.h"
 #include "ray.h"
 #include "scene_error.h"
+#include "sphere.h"
 #include "texture.h"
 #include "vec3.h"
 
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <typeinfo>
 #include <string>
 
 namespace rt {
@@ -61,6 +63,7 @@ class constant_medium : public hittable {
 
   private:
     std::shared_ptr<hittable> boundary_;
+    const sphere* boundary_sphere_ = nullptr; // the boundary, when it is exactly a sphere
     double density_;
     std::shared_ptr<material> phase_function_;
 };
@@ -75,6 +78,7 @@ inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, doub
     if (!(std::isfinite(density) && density >= 0))
         throw scene_error("constant_medium density must be finite and non-negative, got " + std::to_string(density));
     phase_function_ = std::make_shared<isotropic>(std::move(tex));
+    if (typeid(*boundary_) == typeid(sphere)) boundary_sphere_ = static_cast<const sphere*>(boundary_.get());
 }
 
 inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, double density, const color& albedo)
@@ -90,6 +94,25 @@ inline bool constant_medium::hit(const ray& r, interval ray_t, hit_record& rec) 
     auto past = [&](double t) {
         return std::isinf(t) ? t : t + 1e-9 * (1 + origin_size + std::fabs(t) * ray_length) / ray_length;
     };
+    // A sphere (the book's usual boundary): its one chord in closed form, without asking the
+    // boundary's hit() for hit records (whose shared material pointers, copied on every call,
+    // make threads contend for one reference count). The same draws and the same answer.
+    if (boundary_sphere_) {
+        double t0, t1;
+        const sphere& s = *boundary_sphere_;
+        if (!sphere_roots(r.origin(), r.direction(), s.center(r.time()), s.radius(), t0, t1)) return false;
+        const double from = std::fmax(t0, ray_t.min), to = std::fmin(t1, ray_t.max);
+        if (!(from < to)) return false;
+        const double distance = -std::log(random_double()) / density_;
+        if (!(distance < (to - from) * ray_length)) return false;
+        rec.t = from + distance / ray_length;
+        rec.p = r.at(rec.t);
+        rec.normal = vec3(1, 0, 0); // arbitrary: a point in a volume has no surface
+        rec.front_face = true;
+        rec.u = rec.v = 0;
+        rec.mat = phase_function_;
+        return true;
+    }
     double distance_left = -1; // the free-flight distance still to go inside; drawn at first need
     double t = -infinity;      // the last crossing: from the start of the ray's line
     int winding = 0;           // entries minus exits before t
