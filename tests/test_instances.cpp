@@ -338,3 +338,27 @@ TEST_CASE("instances: the scene format's rotate and scale words") {
     fails("sphere 0 0 0 1 lambertian 0.5 0.5 0.5 0 0 scale 1 0 1");
     fails("sphere 0 0 0 1 lambertian 0.5 0.5 0.5 0 0 scale 1 1");
 }
+
+TEST_CASE("instances: a textured shape inside an instance has the (u, v) of its own frame") {
+    // A unit sphere stretched to (2, 1, 1) (an instance: no longer a sphere). Its (u, v) are book
+    // 2's get_sphere_uv of the object's own normal: at the object's (0, 0, 1), u = 1/4, v = 1/2;
+    // at (1, 0, 0), u = 1/2, v = 1/2; at (0, 1, 0), v = 1.
+    auto tex = std::make_shared<checker_texture>(0.5, color(1, 1, 1), color(0, 0, 0));
+    auto ball = std::make_shared<sphere>(point3(0, 0, 0), 1, std::make_shared<lambertian>(tex));
+    hittable_list world(std::make_shared<scale>(ball, vec3(2, 1, 1)));
+    const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
+    struct probe {
+        vec3 from, dir;
+        double u, v;
+    };
+    for (const probe& p : {probe{vec3(0, 0, 10), vec3(0, 0, -1), 0.25, 0.5}, probe{vec3(10, 0, 0), vec3(-1, 0, 0), 0.5, 0.5},
+                           probe{vec3(0, 10, 0), vec3(0, -1, 0), -1, 1.0}}) {
+        surface_hit hit;
+        REQUIRE(scene.intersect(engine_ray(scene, p.from, p.dir), hit));
+        CHECK(hit.kind == shape_kind::instance);
+        double u, v;
+        surface_coordinates(scene, hit, u, v);
+        if (p.u >= 0) CHECK(u == doctest::Approx(p.u).epsilon(1e-5));
+        CHECK(v == doctest::Approx(p.v).epsilon(1e-5));
+    }
+}

@@ -17,6 +17,7 @@
 // triangle test's ray set-up is made at the first triangle leaf a ray reaches; and a scene of a
 // handful of shapes has no BVH nodes at all.
 
+#include "../constants.h"
 #include "../hittable.h"
 #include "bsdf.h"
 #include "bvh.h"
@@ -33,6 +34,7 @@
 #include "user_shape_set.h"
 #include "vec3f.h"
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -109,6 +111,12 @@ class compiled_scene {
     // index `cullable` accepts (opaque ones: a glass object's back face must be found).
     template <class Predicate>
     void set_back_face_culling(Predicate cullable);
+
+    // The texture coordinates (u, v) of a hit, as the books define them: a sphere's from its
+    // outward normal (book 2's get_sphere_uv), a quad's from its edges (alpha, beta), a mesh
+    // triangle's interpolated from its corners' (0 without them), an instance's from the shape
+    // inside it; (0, 0) for user shapes (whose record carries its own).
+    void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
 
     // Bytes held for tracing: the sets and the BVH nodes.
     size_t geometry_bytes() const {
@@ -211,6 +219,7 @@ inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref&
                                          surface_hit& hit) const {
     hit.t = t;
     hit.time = r.time;
+    hit.has_uv = false;
     hit.user_shape = nullptr;
     hit.kind = best.kind;
     hit.index = best.index;
@@ -221,6 +230,30 @@ inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref&
     case shape_kind::moving_sphere: moving_spheres.complete_hit(r, t, best.index, hit); break;
     case shape_kind::instance: complete_instance_hit(r, state, best.index, hit); break;
     case shape_kind::user: complete_user_hit(user_shapes.shapes[best.index], hit.user_record, origin, hit); break;
+    }
+}
+
+inline void compiled_scene::surface_coordinates(const surface_hit& hit, double& u, double& v) const {
+    u = v = 0;
+    if (hit.has_uv) {
+        u = hit.u;
+        v = hit.v;
+        return;
+    }
+    const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
+    if (hit.kind == shape_kind::sphere || hit.kind == shape_kind::moving_sphere) {
+        const double theta = std::acos(std::fmax(-1.0, std::fmin(1.0, double(-outward.y))));
+        const double phi = std::atan2(double(-outward.z), double(outward.x)) + pi;
+        u = phi / (2 * pi);
+        v = theta / pi;
+    } else if (hit.kind == shape_kind::quad) {
+        const vec3 q = quads.corner(hit.index).to_double(), eu = quads.edge_u(hit.index).to_double(),
+                   ev = quads.edge_v(hit.index).to_double();
+        const vec3 n = cross(eu, ev), w = n / dot(n, n), rel = hit.p.to_double() - q;
+        u = dot(w, cross(rel, ev));
+        v = dot(w, cross(eu, rel));
+    } else if (hit.kind == shape_kind::triangle) {
+        triangles.surface_coordinates(hit.index, hit.p.to_double(), u, v);
     }
 }
 
@@ -241,6 +274,15 @@ inline void compiled_scene::complete_instance_hit(const ray3f& r, const leaf_sta
     hit.shading_normal = normalize(to_object.transposed(inner.shading_normal));
     hit.front_face = inner.front_face;
     hit.material = inner.material;
+    if (materials[inner.material].texture != no_texture) {
+        // Texture coordinates belong to the shape in its own frame (as the book's transforms
+        // compute them, hitting the object in its frame): asked of the object now.
+        double u, v;
+        objects[instances.object[i]]->surface_coordinates(inner, u, v);
+        hit.has_uv = true;
+        hit.u = float(u);
+        hit.v = float(v);
+    }
     // The error of the carried-out point, and of a spawned ray's origin carried back in.
     const auto& a = to_world.m;
     const vec3f a_p = {std::fabs(a[0][0] * inner.p.x) + std::fabs(a[0][1] * inner.p.y) + std::fabs(a[0][2] * inner.p.z),

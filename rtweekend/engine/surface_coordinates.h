@@ -11,9 +11,10 @@
 // (u, v) by shape: a sphere's from its outward normal (book 2's get_sphere_uv: u the angle around
 // the y axis from -x, v from the south pole -y up); a quad's from its edges (book 2's alpha and
 // beta, Q + u U + v V); a triangle's from its mesh's per-vertex uv weighted barycentrically, or 0
-// (as the book's shapes without coordinates have). A shape under rotate_y keeps its world-space
-// normal here, where the book's hit computes (u, v) in the object's frame: a rotated sphere's
-// texture turns with the world, not with the sphere.
+// (as the book's shapes without coordinates have); an instance's from the shape inside it, in the
+// object's own frame (compiled_scene::surface_coordinates). A sphere flattened under rotate_y
+// keeps its world-space normal here, where the book's hit computes (u, v) in the object's frame:
+// its texture turns with the world, not with the sphere.
 
 #include "bsdf.h"
 #include "compiled_scene.h"
@@ -31,24 +32,7 @@ vec3f textured_light_radiance(const compiled_scene& scene, const light_choice& l
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 inline void surface_coordinates(const compiled_scene& scene, const surface_hit& hit, double& u, double& v) {
-    u = v = 0;
-    const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
-    // Shape kinds not named here (user shapes, whose record carries its own (u, v), and kinds
-    // added later) get (0, 0).
-    if (hit.kind == shape_kind::sphere || hit.kind == shape_kind::moving_sphere) {
-        const double theta = std::acos(std::fmax(-1.0, std::fmin(1.0, double(-outward.y))));
-        const double phi = std::atan2(double(-outward.z), double(outward.x)) + pi;
-        u = phi / (2 * pi);
-        v = theta / pi;
-    } else if (hit.kind == shape_kind::quad) {
-        const vec3 q = scene.quads.corner(hit.index).to_double(), eu = scene.quads.edge_u(hit.index).to_double(),
-                   ev = scene.quads.edge_v(hit.index).to_double();
-        const vec3 n = cross(eu, ev), w = n / dot(n, n), rel = hit.p.to_double() - q;
-        u = dot(w, cross(rel, ev));
-        v = dot(w, cross(eu, rel));
-    } else if (hit.kind == shape_kind::triangle) {
-        scene.triangles.surface_coordinates(hit.index, hit.p.to_double(), u, v);
-    }
+    scene.surface_coordinates(hit, u, v);
 }
 
 namespace detail {

@@ -19,6 +19,10 @@ struct surface_hit {
     bool front_face = true;
     float offset = 0;      // extra push off the surface for spawned rays (the shape's own error)
     float time = 0;        // the time of the ray that found the hit: rays spawned from it keep it
+    // An instance's hit on a textured material: the texture coordinates of the shape inside it,
+    // found in the object's own frame (surface_coordinates.h); other hits work theirs out on demand.
+    bool has_uv = false;
+    float u = 0, v = 0;
     uint32_t material = 0; // index into compiled_scene::materials
     shape_kind kind = shape_kind::sphere; // which shape was hit: its kind and index in its set
     uint32_t index = 0;
