@@ -7,12 +7,15 @@
 
 #include <rtweekend/camera.h>
 #include <rtweekend/engine/path_tracer.h>
+#include <rtweekend/io/scene_file.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
 
 #include <cmath>
 #include <memory>
+#include <sstream>
+#include <string>
 
 using namespace rt;
 
@@ -92,4 +95,21 @@ TEST_CASE("smooth shading: the folded Lambertian weighs every sample by its albe
     CHECK(below == 0);
     CHECK(off_albedo == 0);
     CHECK(pdf_integral / n == doctest::Approx(1.0).epsilon(0.01));
+}
+
+TEST_CASE("smooth shading: a scene file's `smooth` turns it on, with computed normals when the file has none") {
+    const std::string dir = std::string(RTWEEKEND_TEST_DATA) + "/scene.txt";
+    std::istringstream flat("mesh meshes/bunny_npm.obj lambertian 0.5 0.5 0.5 0 0\n");
+    std::istringstream smooth("mesh meshes/bunny_npm.obj lambertian 0.5 0.5 0.5 0 0 smooth translate 1 0 0\n");
+    scene_description a = parse_scene(flat, dir), b = parse_scene(smooth, dir);
+    auto* flat_mesh = dynamic_cast<const triangle_mesh*>(a.world.objects.at(0).get());
+    REQUIRE(flat_mesh);
+    CHECK(!flat_mesh->smooth_shading);
+    auto* moved = dynamic_cast<const translate*>(b.world.objects.at(0).get());
+    REQUIRE(moved);
+    auto* smooth_mesh = dynamic_cast<const triangle_mesh*>(moved->object().get());
+    REQUIRE(smooth_mesh);
+    CHECK(smooth_mesh->smooth_shading);
+    CHECK(smooth_mesh->normals.size() > 0);
+    CHECK(smooth_mesh->face_normals.size() == smooth_mesh->faces.size());
 }

@@ -25,9 +25,10 @@
 //                                side u x v points to
 //   box ax ay az bx by bz <material> [<transform>...]
 //                                book 2's box: six quads between opposite corners a and b
-//   mesh file.obj <material> [<transform>...]
+//   mesh file.obj <material> [smooth] [<transform>...]
 //                                an OBJ mesh (or .ply: a PLY mesh); a relative path is relative to
-//                                the scene file
+//                                the scene file; `smooth` shades with its vertex normals (computed,
+//                                area-weighted, when the file has none)
 //   medium density <c> <shape line>
 //                                book 2's constant_medium: fog of that density and albedo <c>
 //                                inside the shape (any shape directive above, from its keyword on;
@@ -414,7 +415,7 @@ inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, 
         const std::string file = resolve(line.word(i + 1));
         size_t at = i + 2;
         std::shared_ptr<material> mat = material_at(line, at);
-        std::shared_ptr<hittable> mesh;
+        std::shared_ptr<triangle_mesh> mesh;
         try {
             // By extension: Stanford PLY, or else Wavefront OBJ.
             std::string ext = std::filesystem::path(file).extension().string();
@@ -422,6 +423,12 @@ inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, 
             mesh = ext == ".ply" ? load_ply(file, std::move(mat)) : load_obj(file, std::move(mat));
         } catch (const scene_error& e) {
             line.fail(e.what());
+        }
+        // `smooth`: shade with the file's vertex normals, or with computed ones if it has none.
+        if (at < line.size() && line.word(at) == "smooth") {
+            if (mesh->normals.empty() || mesh->face_normals.empty()) mesh->compute_vertex_normals();
+            else mesh->smooth_shading = true;
+            ++at;
         }
         return transforms_from(line, at, std::move(mesh));
     }
