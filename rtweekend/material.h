@@ -134,26 +134,46 @@ inline bool scatter_through_contract(const compiled_material& m, const ray& r_in
 
 } // namespace detail
 
-class lambertian : public material {
+// A colour that may vary over a surface, as book 2's materials take it: a texture, and its one
+// colour when the texture is exactly a solid_color (what the renderer then uses without asking
+// the texture). Held by lambertian and isotropic.
+class surface_colour {
   public:
-    lambertian(const color& albedo) : tex_(std::make_shared<solid_color>(albedo)), albedo_(albedo), solid_(true) {}
-    // Book 2: a textured surface, its albedo looked up at the hit's (u, v) and point.
-    lambertian(std::shared_ptr<texture> tex) : tex_(std::move(tex)) {
+    surface_colour(const color& c) : tex_(std::make_shared<solid_color>(c)), constant_(c), solid_(true) {}
+    surface_colour(std::shared_ptr<texture> tex) : tex_(std::move(tex)) {
         if (const solid_color* solid = exact_solid_color(tex_.get())) {
-            albedo_ = solid->albedo();
+            constant_ = solid->albedo();
             solid_ = true;
         }
     }
 
+    color at(const hit_record& rec) const { return tex_->value(rec.u, rec.v, rec.p); }
+    // The colour when the texture is a solid_color; black for any other texture.
+    const color& constant() const { return constant_; }
+    bool solid() const { return solid_; }
+    const std::shared_ptr<texture>& tex() const { return tex_; }
+
+  private:
+    std::shared_ptr<texture> tex_;
+    color constant_{0, 0, 0};
+    bool solid_ = false;
+};
+
+class lambertian : public material {
+  public:
+    lambertian(const color& albedo) : albedo_(albedo) {}
+    // Book 2: a textured surface, its albedo looked up at the hit's (u, v) and point.
+    lambertian(std::shared_ptr<texture> tex) : albedo_(std::move(tex)) {}
+
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         compiled_material m = compiled();
-        if (!solid_) m.albedo = vec3f(tex_->value(rec.u, rec.v, rec.p));
+        if (!albedo_.solid()) m.albedo = vec3f(albedo_.at(rec));
         return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
     }
 
     // Book 3: cosine-weighted about the normal; the renderer's draw is the same density.
     bool scatter(const ray& /*r_in*/, const hit_record& rec, scatter_record& srec) const override {
-        srec.attenuation = tex_->value(rec.u, rec.v, rec.p);
+        srec.attenuation = albedo_.at(rec);
         srec.pdf_ptr = std::make_shared<cosine_pdf>(rec.normal);
         srec.skip_pdf = false;
         return true;
@@ -170,19 +190,17 @@ class lambertian : public material {
     compiled_material compiled() const {
         compiled_material m;
         m.kind = material_kind::lambertian;
-        m.albedo = vec3f(albedo_);
+        m.albedo = vec3f(albedo_.constant());
         m.source = this;
         return m;
     }
 
     // The albedo when the texture is a solid_color; black for any other texture.
-    const color& albedo() const { return albedo_; }
-    const std::shared_ptr<texture>& tex() const { return tex_; }
+    const color& albedo() const { return albedo_.constant(); }
+    const std::shared_ptr<texture>& tex() const { return albedo_.tex(); }
 
   private:
-    std::shared_ptr<texture> tex_;
-    color albedo_{0, 0, 0};
-    bool solid_ = false; // tex_ is exactly a solid_color, of colour albedo_
+    surface_colour albedo_;
 };
 
 class metal : public material {
@@ -340,23 +358,18 @@ class diffuse_light : public material {
 // to both sides alike.
 class isotropic : public material {
   public:
-    isotropic(const color& albedo) : tex_(std::make_shared<solid_color>(albedo)), albedo_(albedo), solid_(true) {}
-    isotropic(std::shared_ptr<texture> tex) : tex_(std::move(tex)) {
-        if (const solid_color* solid = exact_solid_color(tex_.get())) {
-            albedo_ = solid->albedo();
-            solid_ = true;
-        }
-    }
+    isotropic(const color& albedo) : albedo_(albedo) {}
+    isotropic(std::shared_ptr<texture> tex) : albedo_(std::move(tex)) {}
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         compiled_material m = compiled();
-        if (!solid_) m.albedo = vec3f(tex_->value(rec.u, rec.v, rec.p));
+        if (!albedo_.solid()) m.albedo = vec3f(albedo_.at(rec));
         return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
     }
 
     // Book 3: uniform over the sphere of directions, density 1 / (4 pi).
     bool scatter(const ray& /*r_in*/, const hit_record& rec, scatter_record& srec) const override {
-        srec.attenuation = tex_->value(rec.u, rec.v, rec.p);
+        srec.attenuation = albedo_.at(rec);
         srec.pdf_ptr = std::make_shared<sphere_pdf>();
         srec.skip_pdf = false;
         return true;
@@ -372,18 +385,16 @@ class isotropic : public material {
     compiled_material compiled() const {
         compiled_material m;
         m.kind = material_kind::isotropic;
-        m.albedo = vec3f(albedo_);
+        m.albedo = vec3f(albedo_.constant());
         m.source = this;
         return m;
     }
 
-    const color& albedo() const { return albedo_; }
-    const std::shared_ptr<texture>& tex() const { return tex_; }
+    const color& albedo() const { return albedo_.constant(); }
+    const std::shared_ptr<texture>& tex() const { return albedo_.tex(); }
 
   private:
-    std::shared_ptr<texture> tex_;
-    color albedo_{0, 0, 0};
-    bool solid_ = false; // tex_ is exactly a solid_color, of colour albedo_
+    surface_colour albedo_;
 };
 
 // A diffuse base of colour `diffuse` under a smooth dielectric coat of index refraction_index (in
