@@ -225,42 +225,57 @@ TEST_CASE("constant_medium: furnace: white fog in a uniform white environment st
 }
 
 TEST_CASE("constant_medium: next-event estimation inside fog agrees with material sampling alone") {
-    // A small light inside a ball of grey fog, seen in the dark. Light sampling at the fog's
-    // scattering points (the phase function's eval has no cosine and no hemisphere) weighed by
-    // MIS must converge to what following the phase function alone finds. Compared through the
-    // image means, within 5 standard errors of their difference.
+    // A small light inside a ball of dense grey fog, near its edge, seen in the dark. Light
+    // sampling at the fog's scattering points (the phase function's eval has no cosine and no
+    // hemisphere) weighed by MIS must converge to what following the phase function alone finds.
+    // The fog here is dense (density 3: a mean free path of 1/3 against a ball of radius 1.5), so
+    // most light reaches the camera from fog just beside the emitter, where shadow rays are short
+    // and many graze the emitter's silhouette. A shadow ray that started off the scattering point
+    // (pushed along the medium's arbitrary normal as from a surface) met the light's own sphere
+    // before its end there: next-event estimation read 0.0535 +- 0.0003 against bsdf's
+    // 0.0628 +- 0.0005 (24 seeds of 512 samples), 15 % low; the rays now start at the point.
+    // Compared through the image means averaged over independent seeds, whose spread gives the
+    // standard error: the difference must lie within 4 standard errors (the old code missed by
+    // about 10: nee 0.0537, bsdf 0.0634, standard error of the difference 0.0010).
     hittable_list world;
-    world.add(std::make_shared<sphere>(point3(0, 0, -4), 0.3, std::make_shared<diffuse_light>(color(20, 20, 20))));
-    world.add(std::make_shared<constant_medium>(std::make_shared<sphere>(point3(0, 0, -4), 1.5, white_phase()), 0.8,
+    world.add(std::make_shared<sphere>(point3(1, 0, -4), 0.3, std::make_shared<diffuse_light>(color(20, 20, 20))));
+    world.add(std::make_shared<constant_medium>(std::make_shared<sphere>(point3(0, 0, -4), 1.5, white_phase()), 3.0,
                                                 color(0.7, 0.7, 0.7)));
+    const int seeds = 12;
+    // The mean over seeds of the image mean, and its standard error.
     auto render_mean = [&](path_estimator e, double& standard_error) {
-        camera cam;
-        cam.image_width = 16;
-        cam.aspect_ratio = 1;
-        cam.samples_per_pixel = 256;
-        cam.max_depth = 30;
-        cam.vfov = 45;
-        cam.background = color(0, 0, 0);
-        cam.estimator = e;
-        cam.quiet = true;
-        const image img = cam.render_image(world);
         double sum = 0, sum2 = 0;
-        const int n = img.width() * img.height();
-        for (int y = 0; y < img.height(); ++y)
-            for (int x = 0; x < img.width(); ++x) {
-                const double v = img.pixel(x, y).x();
-                sum += v;
-                sum2 += v * v;
-            }
-        const double mean = sum / n;
-        // Pixel means vary over the image; their spread bounds the error of the mean from above.
-        standard_error = std::sqrt(std::fmax(0.0, sum2 / n - mean * mean) / n);
+        for (int k = 0; k < seeds; ++k) {
+            camera cam;
+            cam.image_width = 16;
+            cam.aspect_ratio = 1;
+            cam.samples_per_pixel = 256;
+            cam.max_depth = 30;
+            cam.vfov = 45;
+            cam.background = color(0, 0, 0);
+            cam.estimator = e;
+            cam.seed = uint64_t(k + 1);
+            cam.quiet = true;
+            const image img = cam.render_image(world);
+            double m = 0;
+            for (int y = 0; y < img.height(); ++y)
+                for (int x = 0; x < img.width(); ++x) m += img.pixel(x, y).x();
+            m /= img.width() * img.height();
+            sum += m;
+            sum2 += m * m;
+        }
+        const double mean = sum / seeds;
+        standard_error = std::sqrt(std::fmax(0.0, sum2 / seeds - mean * mean) / (seeds - 1));
         return mean;
     };
     double se_nee = 0, se_bsdf = 0;
     const double nee = render_mean(path_estimator::nee, se_nee), bsdf = render_mean(path_estimator::bsdf, se_bsdf);
+    const double se = std::sqrt(se_nee * se_nee + se_bsdf * se_bsdf);
     CAPTURE(nee);
+    CAPTURE(se_nee);
     CAPTURE(bsdf);
-    CHECK(nee > 0.05);
-    CHECK(std::fabs(nee - bsdf) <= 0.03 * bsdf);
+    CAPTURE(se_bsdf);
+    CHECK(nee > 0.03);
+    CHECK(se > 0);
+    CHECK(std::fabs(nee - bsdf) <= 4 * se);
 }
