@@ -28,6 +28,7 @@ struct options {
     std::optional<uint64_t> seed;
     std::optional<bool> cull_back_faces; // --bfc on|off (apps that render XML scenes)
     std::optional<rt::path_estimator> estimator; // --estimator nee|bsdf|mixture
+    std::optional<rt::sampler_kind> sampler;     // --sampler independent|stratified|sobol
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     std::string output; // empty: PPM on stdout
     bool quiet = false;
@@ -45,6 +46,7 @@ struct options {
         if (adaptive) cam.adaptive_error = *adaptive;
         if (seed) cam.seed = *seed;
         if (estimator) cam.estimator = *estimator;
+        if (sampler) cam.sampler = *sampler;
         cam.quiet = quiet;
     }
 };
@@ -70,7 +72,8 @@ inline bool is_xml_scene(const std::string& path) {
 inline void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
-                 "          [--estimator nee|bsdf|mixture] [-o FILE] [--quiet]\n"
+                 "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent]\n"
+                 "          [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
@@ -83,6 +86,9 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "  --estimator E how light is found: nee (light sampling and material sampling weighed\n"
                  "               by multiple importance sampling; default), bsdf (the books' path tracer of\n"
                  "               books 1 and 2) or mixture (book 3's one-sample mixture)\n"
+                 "  --sampler S  where each sample's random numbers come from: sobol (Owen-scrambled Sobol\n"
+                 "               in Morton order, error spread as blue noise; default), stratified\n"
+                 "               (jittered) or independent (plain random numbers)\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -96,7 +102,7 @@ inline void print_usage(const description& d, std::FILE* to) {
                      "  --integrator path\n"
                      "               render with the path tracer instead (point lights with indirect light, the\n"
                      "               diffuse reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
-                     "               --adaptive and --estimator then apply too\n");
+                     "               --adaptive, --estimator and --sampler then apply too\n");
 }
 
 [[noreturn]] inline void usage_error(const description& d, const std::string& message) {
@@ -162,6 +168,12 @@ inline options parse(int argc, char** argv, const description& d) {
             rt::path_estimator e;
             if (!rt::parse_estimator(v, e)) usage_error(d, "--estimator needs nee, bsdf or mixture, got '" + v + "'");
             o.estimator = e;
+        } else if (arg == "--sampler") {
+            std::string v = next();
+            rt::sampler_kind k;
+            if (!rt::parse_sampler(v, k))
+                usage_error(d, "--sampler needs sobol, stratified or independent, got '" + v + "'");
+            o.sampler = k;
         } else if (arg == "--integrator" && d.xml_scenes) {
             std::string v = next();
             if (v != "path" && v != "whitted") usage_error(d, "--integrator needs path or whitted, got '" + v + "'");
@@ -184,8 +196,9 @@ inline options parse(int argc, char** argv, const description& d) {
         usage_error(d, d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
                                              : std::string("expected ") + d.operands);
     const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
-    if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator))
-        usage_error(d, "--spp, --depth, --adaptive, --seed and --estimator apply to XML scenes only with "
+    if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator ||
+                                     o.sampler))
+        usage_error(d, "--spp, --depth, --adaptive, --seed, --estimator and --sampler apply to XML scenes only with "
                        "--integrator path, and --width never does (their files set the resolution)");
     if (xml && o.width) usage_error(d, "--width does not apply to XML scenes (their files set the resolution)");
     if (xml && o.path_integrator && o.cull_back_faces) usage_error(d, "--bfc applies to the Whitted integrator only");

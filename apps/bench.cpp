@@ -26,7 +26,9 @@
 //       measured time and 8-bit error, prints the equal-time and equal-error comparisons. With
 //       --runs N (default 1 here) every image is rendered N times, interleaved, and timed by the
 //       median. With --estimators nee,bsdf,mixture (any of them) the uniform images are rendered
-//       with each estimator in turn and compared by efficiency, 1 / (MSE * seconds)
+//       with each estimator in turn and compared by efficiency, 1 / (MSE * seconds); with
+//       --samplers independent,stratified,sobol (any of them) likewise with each sampler, and
+//       each one's convergence slope (MSE against spp) and MSE at equal spp and equal time
 
 #include "app_options.h"
 #include "loop_subdivision.h"
@@ -70,7 +72,7 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
                  "       bench --user-shapes N [--threads N] [--runs N]\n"
                  "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]\n"
-                 "             [--plot F.svg] [--book-seconds S --book-rmse8 E] [--estimators E,E,...]\n");
+                 "             [--plot F.svg] [--book-seconds S --book-rmse8 E] [--estimators E,E,...] [--samplers S,S,...]\n");
     std::exit(2);
 }
 
@@ -86,7 +88,19 @@ struct bench_options {
     std::optional<int> width, spp, depth;
     bool threads_given = false, runs_given = false;
     std::vector<rt::path_estimator> estimators; // --estimators: compare these (bench --error)
+    std::vector<rt::sampler_kind> samplers;     // --samplers: compare these (bench --error)
 };
+
+// "a,b,c" -> {"a", "b", "c"} (an empty item stays, and is then refused as a name).
+std::vector<std::string> comma_separated(const std::string& list) {
+    std::vector<std::string> items;
+    for (size_t start = 0;;) {
+        const size_t comma = list.find(',', start);
+        items.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) return items;
+        start = comma + 1;
+    }
+}
 
 bench_options parse(int argc, char** argv) {
     bench_options o;
@@ -106,7 +120,7 @@ bench_options parse(int argc, char** argv) {
                         "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
                         "       bench --user-shapes N [--threads N] [--runs N]\n"
                         "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N]\n"
-                        "             [--csv F] [--plot F.svg] [--book-seconds S --book-rmse8 E]\n"
+                        "             [--csv F] [--plot F.svg] [--book-seconds S --book-rmse8 E] [--estimators E,...] [--samplers S,...]\n"
                         "Medians of --runs runs (default 5; 1 for --error); one thread unless --threads (0 = all cores;\n"
                         "--error: all cores unless --threads).\n");
             std::exit(0);
@@ -118,15 +132,17 @@ bench_options parse(int argc, char** argv) {
         else if (arg == "--user-shapes") o.user_shapes = integer(1, 1 << 22);
         else if (arg == "--error") o.error_ref = next();
         else if (arg == "--estimators") {
-            std::string list = next();
-            for (size_t start = 0; start <= list.size();) {
-                size_t comma = list.find(',', start);
-                std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+            for (const std::string& name : comma_separated(next())) {
                 rt::path_estimator e;
                 if (!rt::parse_estimator(name, e)) usage("--estimators: '" + name + "' is not nee, bsdf or mixture");
                 o.estimators.push_back(e);
-                if (comma == std::string::npos) break;
-                start = comma + 1;
+            }
+        } else if (arg == "--samplers") {
+            for (const std::string& name : comma_separated(next())) {
+                rt::sampler_kind k;
+                if (!rt::parse_sampler(name, k))
+                    usage("--samplers: '" + name + "' is not independent, stratified or sobol");
+                o.samplers.push_back(k);
             }
         }
         else if (arg == "--csv") o.csv = next();
@@ -156,6 +172,9 @@ bench_options parse(int argc, char** argv) {
     if (!o.error_ref.empty() && o.scene.empty()) usage("--error needs --scene");
     if (!o.estimators.empty() && o.scene.empty()) usage("--estimators goes with --scene (one: render with it) or --error");
     if (o.estimators.size() > 1 && o.error_ref.empty()) usage("several --estimators go with --error");
+    if (!o.samplers.empty() && o.scene.empty()) usage("--samplers goes with --scene (one: render with it) or --error");
+    if (o.samplers.size() > 1 && o.error_ref.empty()) usage("several --samplers go with --error");
+    if (o.samplers.size() > 1 && o.estimators.size() > 1) usage("compare either estimators or samplers, not both");
     if (o.book_seconds.has_value() != o.book_rmse8.has_value()) usage("--book-seconds and --book-rmse8 go together");
     if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
     if (!o.rays.empty() && !o.make_rays.empty()) usage("--rays and --make-rays are separate runs");
@@ -191,6 +210,7 @@ void bench_scene(const bench_options& o) {
     if (o.spp) cam.samples_per_pixel = *o.spp;
     if (o.depth) cam.max_depth = *o.depth;
     if (!o.estimators.empty()) cam.estimator = o.estimators[0];
+    if (!o.samplers.empty()) cam.sampler = o.samplers[0];
     cam.threads = o.threads;
     cam.quiet = true;
 
@@ -442,7 +462,7 @@ void bench_scaling(const bench_options& o) {
 // --- time against error -------------------------------------------------------------------------
 
 struct error_point {
-    std::string mode; // "uniform" or "adaptive", or the estimator's name (--estimators)
+    std::string mode; // "uniform" or "adaptive", or the estimator's or sampler's name (--estimators, --samplers)
     int spp;          // samples per pixel (the most a pixel takes, for adaptive)
     double adaptive_error;
     double seconds;
@@ -483,13 +503,21 @@ void bench_error(const bench_options& o) {
     // The images to render: uniform sampling at 1, 2, 4 ... max_spp samples per pixel, then
     // adaptive sampling (at most max_spp) at halving error targets, which span about the same
     // average sample counts as uniform's from 16 spp up.
+    // The variants compared: several samplers, or several estimators (with one estimator and
+    // one sampler, or none, the single variant is "uniform").
+    std::vector<std::string> variants;
+    if (o.samplers.size() > 1)
+        for (rt::sampler_kind k : o.samplers) variants.push_back(rt::sampler_name(k));
+    else if (o.estimators.size() > 1)
+        for (rt::path_estimator e : o.estimators) variants.push_back(rt::estimator_name(e));
+    if (!o.estimators.empty()) s.cam.estimator = o.estimators[0];
+    if (!o.samplers.empty()) s.cam.sampler = o.samplers[0];
     std::vector<error_point> points;
-    if (o.estimators.empty()) {
+    if (variants.empty()) {
         for (int spp = 1; spp <= o.max_spp; spp *= 2) points.push_back({"uniform", spp, 0, 0, 0, 0, {}, {}});
     } else {
-        for (rt::path_estimator e : o.estimators)
-            for (int spp = 1; spp <= o.max_spp; spp *= 2)
-                points.push_back({rt::estimator_name(e), spp, 0, 0, 0, 0, {}, {}});
+        for (const std::string& v : variants)
+            for (int spp = 1; spp <= o.max_spp; spp *= 2) points.push_back({v, spp, 0, 0, 0, 0, {}, {}});
     }
     if (o.adaptive)
         for (double e = 0.1; e > 5e-4; e /= 2) points.push_back({"adaptive", o.max_spp, e, 0, 0, 0, {}, {}});
@@ -506,6 +534,8 @@ void bench_error(const bench_options& o) {
             cam.adaptive_error = p.adaptive_error;
             for (rt::path_estimator e : o.estimators)
                 if (p.mode == rt::estimator_name(e)) cam.estimator = e;
+            for (rt::sampler_kind k : o.samplers)
+                if (p.mode == rt::sampler_name(k)) cam.sampler = k;
             rt::render_result r = rt::render(cam, s.world, s.point_lights);
             seconds[i].push_back(r.stats.seconds);
             p.seconds = median(seconds[i]);
@@ -543,23 +573,46 @@ void bench_error(const bench_options& o) {
     // Estimators: efficiency 1 / (MSE * seconds) at each sample count, and its median over the
     // sample counts from 16 up (below that, bias-free noise is not yet the whole error: a few
     // fireflies decide the MSE).
-    if (!o.estimators.empty()) {
+    if (!variants.empty()) {
         std::vector<double> medians;
-        for (rt::path_estimator e : o.estimators) {
-            std::vector<double> eff, eff8;
+        const std::string what = o.samplers.size() > 1 ? "sampler" : "estimator";
+        auto mse_at = [&](const std::string& v, int spp) {
             for (const error_point& p : points)
-                if (p.mode == rt::estimator_name(e) && p.spp >= 16) {
+                if (p.mode == v && p.spp == spp) return p.linear.rmse * p.linear.rmse;
+            return 0.0;
+        };
+        for (const std::string& v : variants) {
+            std::vector<double> eff, eff8;
+            // The convergence slope: least squares of log MSE on log spp over spp >= 4 (MSE falls
+            // as spp^-1 for independent samples; faster where stratification pays).
+            double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+            for (const error_point& p : points)
+                if (p.mode == v && p.spp >= 16) {
                     eff.push_back(1.0 / (p.linear.rmse * p.linear.rmse * p.seconds));
                     eff8.push_back(1.0 / (p.display.rmse * p.display.rmse * p.seconds));
                 }
+            for (const error_point& p : points)
+                if (p.mode == v && p.spp >= 4) {
+                    const double x = std::log(double(p.spp)), y = 2 * std::log(p.linear.rmse);
+                    sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
+                }
+            const double slope = n >= 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.0;
             medians.push_back(eff.empty() ? 0.0 : median(eff));
-            std::printf("estimator %s: efficiency 1/(MSE*s) %.4g linear, %.4g in 8-bit (medians over spp >= 16)\n",
-                        rt::estimator_name(e), medians.back(), eff8.empty() ? 0.0 : median(eff8));
+            std::printf("%s %s: efficiency 1/(MSE*s) %.4g linear, %.4g in 8-bit (medians over spp >= 16); "
+                        "MSE ~ spp^%.2f\n",
+                        what.c_str(), v.c_str(), medians.back(), eff8.empty() ? 0.0 : median(eff8), slope);
         }
-        for (size_t i = 1; i < medians.size(); ++i)
+        for (size_t i = 1; i < medians.size(); ++i) {
             if (medians[i] > 0)
-                std::printf("%s / %s efficiency: %.2fx\n", rt::estimator_name(o.estimators[0]),
-                            rt::estimator_name(o.estimators[i]), medians[0] / medians[i]);
+                std::printf("%s / %s efficiency: %.2fx\n", variants[0].c_str(), variants[i].c_str(),
+                            medians[0] / medians[i]);
+            std::vector<double> ratios;
+            for (int spp = 16; spp <= o.max_spp; spp *= 2)
+                if (mse_at(variants[i], spp) > 0) ratios.push_back(mse_at(variants[0], spp) / mse_at(variants[i], spp));
+            if (!ratios.empty())
+                std::printf("%s / %s MSE at equal spp (median over spp >= 16): %.3f\n", variants[0].c_str(),
+                            variants[i].c_str(), median(ratios));
+        }
     }
 
     // Adaptive against uniform: the rays and the time uniform sampling needs to reach each
@@ -616,10 +669,10 @@ void bench_error(const bench_options& o) {
         auto [udx, udy] = curve("uniform", true);
         auto [adx, ady] = curve("adaptive", true);
         std::vector<app::plot_series> series;
-        if (o.estimators.empty()) series.push_back({"rtweekend, uniform sampling", udx, udy});
-        for (rt::path_estimator e : o.estimators) {
-            auto [ex, ey] = curve(rt::estimator_name(e), true);
-            series.push_back({std::string("rtweekend, estimator ") + rt::estimator_name(e), ex, ey});
+        if (variants.empty()) series.push_back({"rtweekend, uniform sampling", udx, udy});
+        for (const std::string& v : variants) {
+            auto [ex, ey] = curve(v, true);
+            series.push_back({"rtweekend, " + std::string(o.samplers.size() > 1 ? "sampler " : "estimator ") + v, ex, ey});
         }
         if (!adx.empty()) series.push_back({"rtweekend, adaptive sampling", adx, ady});
         if (o.book_seconds) {

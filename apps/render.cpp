@@ -77,6 +77,7 @@ void render_xml_path_traced(const app::options& opt, const rt::whitted_scene& sc
     settings.quiet = opt.quiet;
     settings.adaptive_error = opt.adaptive.value_or(0);
     settings.estimator = opt.estimator.value_or(rt::path_estimator::nee);
+    if (opt.sampler) settings.sampler = *opt.sampler;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
     std::vector<rt::point_light> lights = scene.lights;
     for (rt::point_light& l : lights) l.intensity *= rt::pi;

@@ -67,6 +67,9 @@ class camera {
     // importance sampling (the default), bsdf (the books' path tracer of books 1 and 2) or
     // mixture (book 3's).
     path_estimator estimator = path_estimator::nee;
+    // Where each sample's random numbers come from (engine/sampler.h): sobol (Owen-scrambled,
+    // blue-noise ordered; the default), stratified (jittered) or independent (plain random).
+    sampler_kind sampler = sampler_kind::sobol;
 
     // Renders the world and writes a P3 PPM to stdout. On invalid input prints one error line
     // to stderr and exits with status 1 (book-style mains have no error handling of their own).
@@ -108,6 +111,7 @@ class camera {
         s.adaptive_error = adaptive_error;
         s.adaptive_min_samples = adaptive_min_samples;
         s.estimator = estimator;
+        s.sampler = sampler;
         s.check("camera");
         return s;
     }

@@ -25,7 +25,7 @@ const std::vector<std::vector<std::string>> ladder = {
     {"constants.h", "scene_error.h", "engine/rng.h", "engine/simd.h", "engine/force_inline.h", "io/file.h",
      "io/text_lines.h"},
     // 2. math: the book's vectors and intervals, the engine's float vectors, warps, Fresnel
-    {"vec3.h", "interval.h", "ray.h", "color.h", "aabb.h", "engine/vec3f.h", "engine/sampling.h",
+    {"vec3.h", "interval.h", "ray.h", "color.h", "aabb.h", "engine/vec3f.h", "engine/sampling.h", "engine/sampler.h",
      "engine/alias_table.h", "engine/light_sampling.h",
      "engine/ray_offset.h", "engine/fresnel.h", "engine/image.h", "engine/validate.h",
      "point_light.h", "perlin.h", "rtw_stb_image.h"},

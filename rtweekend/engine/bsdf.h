@@ -52,6 +52,7 @@
 
 #include "../constants.h"
 #include "fresnel.h"
+#include "rng.h"
 #include "sampling.h"
 #include "vec3f.h"
 
@@ -118,7 +119,8 @@ struct compiled_material {
     uint32_t texture = no_texture;
 
     // Draws wi for wo, restricted to `lobes`; false when the light is absorbed (or no lobe of
-    // `lobes` exists). Draws its random numbers from u.next_float() (uniform in [0, 1)).
+    // `lobes` exists). Draws its random numbers from `u`: a choice (lobe, Fresnel) from
+    // u.next_float(), a direction's pair from draw_2d(u) (rng.h), each uniform in [0, 1).
     template <class Uniform>
     bool sample(const vec3f& wo, const shading_point& sp, Uniform& u, material_sample& s, lobe lobes = all_lobes) const;
     vec3f eval(const vec3f& wo, const vec3f& wi, const shading_point& sp) const;
@@ -318,7 +320,7 @@ bool compiled_material::sample(const vec3f& wo, const shading_point& sp, Uniform
     const bool lobe_allowed = (lobes & ~non_delta_lobe) != 0;
     const float p_base = lobe_allowed ? base_probability() : 1.0f;
     if (p_base >= 1.0f || u.next_float() < p_base) {
-        float u1 = u.next_float(), u2 = u.next_float();
+        const auto [u1, u2] = draw_2d(u);
         s.wi = sample_cosine_direction(sp.n, u1, u2);
         s.value = diffuse * (1.0f / p_base);
         s.pdf = p_base * std::fmax(dot(s.wi, sp.n), 0.0f) * (1.0f / pi_f);
@@ -339,7 +341,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
     switch (kind) {
     case material_kind::lambertian: {
         if (!(lobes & non_delta_lobe)) return false;
-        float u1 = u.next_float(), u2 = u.next_float();
+        const auto [u1, u2] = draw_2d(u);
         s.wi = sample_cosine_direction(n, u1, u2);
         s.value = albedo;
         s.pdf = std::fmax(dot(s.wi, n), 0.0f) * (1.0f / pi_f);
@@ -352,7 +354,8 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         const vec3f mirror = reflect_f(d, n);
         vec3f dir = mirror;
         if (fuzz > 0) {
-            float u1 = u.next_float(), u2 = u.next_float(), u3 = u.next_float();
+            const auto [u1, u2] = draw_2d(u);
+            const float u3 = u.next_float();
             dir += fuzz * sample_unit_ball(u1, u2, u3);
         }
         // The book absorbs fuzzed directions that point below the surface.
@@ -413,7 +416,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
     }
     case material_kind::isotropic: {
         if (!(lobes & non_delta_lobe)) return false;
-        float u1 = u.next_float(), u2 = u.next_float();
+        const auto [u1, u2] = draw_2d(u);
         s.wi = sample_unit_sphere(u1, u2);
         s.value = albedo;
         s.pdf = 1.0f / (4.0f * pi_f);
@@ -434,7 +437,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
             s.sampled = delta_reflection;
             return f > 0;
         }
-        float u1 = u.next_float(), u2 = u.next_float();
+        const auto [u1, u2] = draw_2d(u);
         s.wi = sample_cosine_direction(n, u1, u2);
         const float cos_i = dot(s.wi, n);
         if (!(cos_i > 0)) return false;
@@ -448,7 +451,8 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         // eval over the mixture's pdf.
         if (!(lobes & non_delta_lobe)) return false;
         const float ps = glossy_probability();
-        float u0 = u.next_float(), u1 = u.next_float(), u2 = u.next_float();
+        const float u0 = u.next_float();
+        const auto [u1, u2] = draw_2d(u);
         if (u0 < ps) {
             // cos theta_h = u^(1 / (n + 1)) has density (n + 1) cos^n theta_h sin theta_h d theta.
             const float cos_h = std::pow(u1, 1.0f / (exponent + 1.0f));

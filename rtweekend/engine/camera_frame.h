@@ -7,6 +7,7 @@
 #include "../vec3.h"
 #include "../whitted_scene.h"
 #include "rng.h"
+#include "sampler.h"
 #include "sampling.h"
 #include "vec3f.h"
 
@@ -40,22 +41,29 @@ struct camera_frame {
     // uniform in the shutter interval [0, 1) (book 2's ray_time = random_double()). The time is
     // drawn last, and only when asked for: a scene where nothing depends on time draws the
     // random numbers it drew before motion blur existed.
-    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng, bool with_time = false) const {
+    ray3f sample_ray(int x, int y, int samples_per_pixel, pixel_sampler& ps, bool with_time = false) const {
         float jx = 0.5f, jy = 0.5f;
         if (samples_per_pixel > 1) {
-            jx = rng.next_float();
-            jy = rng.next_float();
+            const uniform2 j = ps.get2d(sample_dimension::camera_pixel);
+            jx = j.u1;
+            jy = j.u2;
         }
         float lu = 0, lv = 0;
         if (thin_lens) {
-            float u1 = rng.next_float(), u2 = rng.next_float();
-            vec3f d = sample_unit_disk(u1, u2);
+            const uniform2 l = ps.get2d(sample_dimension::camera_lens);
+            vec3f d = sample_unit_disk(l.u1, l.u2);
             lu = d.x;
             lv = d.y;
         }
         ray3f r = generate(float(x) + jx, float(y) + jy, lu, lv);
-        if (with_time) r.time = rng.next_float();
+        if (with_time) r.time = ps.get1d(sample_dimension::camera_time);
         return r;
+    }
+    // The same with every number from `rng`, in the order above.
+    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng, bool with_time = false) const {
+        const sampler_plan independent;
+        pixel_sampler ps(independent, x, y, 0, rng);
+        return sample_ray(x, y, samples_per_pixel, ps, with_time);
     }
 };
 

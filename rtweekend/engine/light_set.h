@@ -20,6 +20,7 @@
 #include "alias_table.h"
 #include "leaf_query.h"
 #include "light_sampling.h"
+#include "rng.h"
 #include "vec3f.h"
 
 #include <array>
@@ -172,7 +173,7 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     const uint32_t slot = t.select.sample(u.next_float());
     const light& l = lights[t.members[slot]];
     const float pmf = t.select.pmf(slot);
-    const float u1 = u.next_float(), u2 = u.next_float();
+    const auto [u1, u2] = draw_2d(u);
     if (l.kind == light_kind::point) {
         const vec3f to = l.p0 - p;
         const float d2 = length_squared(to);

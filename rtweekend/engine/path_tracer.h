@@ -17,6 +17,7 @@
 #include "ray_offset.h"
 #include "render_settings.h"
 #include "rng.h"
+#include "sampler.h"
 #include "scene_compiler.h"
 #include "scheduler.h"
 #include "surface_coordinates.h"
@@ -105,9 +106,10 @@ struct vertex_material {
         if (!(dot(wi, ng) > 0)) return 0;
         return m.pdf(wo, wi, sp) + m.pdf(wo, mirror(wi), sp);
     }
-    bool sample(pcg32& rng, material_sample& s) const {
+    template <class Uniform>
+    bool sample(Uniform& u, material_sample& s) const {
         if (is_user()) return user->sample(s);
-        if (!m.sample(wo, sp, rng, s)) return false;
+        if (!m.sample(wo, sp, u, s)) return false;
         if (!folded) return true;
         if (s.is_delta()) {
             const float side = dot(s.wi, ng);
@@ -125,9 +127,9 @@ struct vertex_material {
 
 // One path from the camera, estimated with E: the radiance it carries. Materials see the shading
 // normal (a smooth mesh's interpolated one, folded as vertex_material says; else the geometric
-// normal).
+// normal). Each decision draws from its own dimension of the sampler (sampler.h).
 template <path_estimator E, bool UserMaterials>
-vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pcg32& rng,
+vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pixel_sampler& ps,
                  uint64_t& rays) {
     const light_set& lights = scene.lights;
     const int roulette_start = roulette_depth(lights);
@@ -214,26 +216,30 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
         // Next-event estimation: a point on a light, and a shadow ray to it.
         if (E == path_estimator::nee && !lights.empty() && has_density) {
             light_choice lc;
-            if (lights.sample(hit.p, rng, lc)) add_light_sample(lc);
+            dimension_uniforms u = light_uniforms(ps, depth);
+            if (lights.sample(hit.p, u, lc)) add_light_sample(lc);
         }
         // The mixture below covers area lights only; a point light, which no direction can hit,
         // is sampled on its own (next-event estimation without a second strategy to weigh).
         if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
             light_choice lc;
-            if (lights.sample_point(hit.p, rng, lc)) add_light_sample(lc);
+            dimension_uniforms u = light_uniforms(ps, depth);
+            if (lights.sample_point(hit.p, u, lc)) add_light_sample(lc);
         }
 
         material_sample s;
+        dimension_uniforms material_u = material_uniforms(ps, depth);
         if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
             // Book 3's one-sample mixture: the direction comes from the lights or from the
             // material, half the time each, and is weighed by the mixture of both densities.
-            if (rng.next_float() < 0.5f) {
+            if (ps.get1d(sample_dimension::bounce(depth) + sample_dimension::strategy) < 0.5f) {
                 light_choice lc;
-                if (!lights.sample_area(hit.p, rng, lc)) return radiance;
+                dimension_uniforms u = light_uniforms(ps, depth);
+                if (!lights.sample_area(hit.p, u, lc)) return radiance;
                 s.wi = lc.wi;
                 s.sampled = non_delta_lobe;
             } else {
-                if (!vm.sample(rng, s)) return radiance;
+                if (!vm.sample(material_u, s)) return radiance;
                 if (s.is_delta()) s.value *= 2.0f; // chosen half as often as the material alone would
             }
             if (!s.is_delta()) {
@@ -242,7 +248,7 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
                 if (is_black(f) || !(pdf > 0)) return radiance;
                 s.value = f / pdf;
             }
-        } else if (!vm.sample(rng, s)) {
+        } else if (!vm.sample(material_u, s)) {
             return radiance;
         }
         throughput *= s.value;
@@ -253,7 +259,7 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
         if (E == path_estimator::nee && depth >= roulette_start) {
             const float q = max_component(throughput);
             if (q < 1.0f) {
-                if (!(rng.next_float() < q)) return radiance;
+                if (!(ps.get1d(sample_dimension::bounce(depth) + sample_dimension::roulette) < q)) return radiance;
                 throughput *= 1.0f / q;
             }
         }
@@ -277,19 +283,21 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
     const bool user_code = scene.calls_user_code();
     const bool with_time = scene.uses_time();
+    const sampler_plan plan(settings.sampler, settings.seed, spp);
     auto render_with = [&](auto estimator) {
         constexpr path_estimator E = decltype(estimator)::value;
         return render_samples(
             frame.width, frame.height, settings,
-            [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-                ray3f r = frame.sample_ray(x, y, spp, rng, with_time);
+            [&](int x, int y, int s, pcg32& rng, uint64_t& rays) {
+                pixel_sampler ps(plan, x, y, s, rng);
+                ray3f r = frame.sample_ray(x, y, spp, ps, with_time);
                 if (user_code) {
                     // User-written shapes and materials may call random_double(): give them this
                     // sample's generator so the image stays deterministic.
                     detail::scoped_sample_rng guard(rng);
-                    return detail::trace_path<E, true>(scene, env, r, max_depth, rng, rays);
+                    return detail::trace_path<E, true>(scene, env, r, max_depth, ps, rays);
                 }
-                return detail::trace_path<E, false>(scene, env, r, max_depth, rng, rays);
+                return detail::trace_path<E, false>(scene, env, r, max_depth, ps, rays);
             },
             start);
     };

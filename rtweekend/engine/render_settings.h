@@ -5,6 +5,7 @@
 // (camera::settings()).
 
 #include "../scene_error.h"
+#include "sampler.h"
 
 #include <cmath>
 #include <cstdint>
@@ -52,6 +53,7 @@ struct render_settings {
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
     path_estimator estimator = path_estimator::nee; // the path tracer's
+    sampler_kind sampler = sampler_kind::sobol;      // where a sample's numbers come from (sampler.h)
 
     // Throws scene_error "<owner>: <problem>" for a setting that cannot be rendered.
     void check(const std::string& owner = "render settings") const {

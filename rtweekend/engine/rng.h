@@ -14,8 +14,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <utility>
 
 namespace rt {
+
+struct uniform2;
+template <class U>
+constexpr auto has_next_2d(int) -> decltype(std::declval<U&>().next_2d(), bool()) { return true; }
+template <class U>
+constexpr bool has_next_2d(long) { return false; }
 
 class pcg32 {
   public:
@@ -50,6 +57,24 @@ class pcg32 {
     uint64_t state_ = 0x853c49e6748fea9bULL;
     uint64_t inc_ = 0xda3e39cb94b95bdbULL;
 };
+
+// Two uniforms drawn together: a 2-D decision (a direction, a point on a light or a lens).
+struct uniform2 {
+    float u1, u2;
+};
+
+// A pair from any source of uniforms `u`: its next_2d() when it has one (a sampler that
+// stratifies pairs, sampler.h), else two next_float() in order.
+template <class Uniform>
+uniform2 draw_2d(Uniform& u) {
+    if constexpr (has_next_2d<Uniform>(0)) {
+        return u.next_2d();
+    } else {
+        const float u1 = u.next_float();
+        const float u2 = u.next_float();
+        return {u1, u2};
+    }
+}
 
 // SplitMix64's finaliser (Steele, Lea and Flood, OOPSLA 2014): a bijective 64-bit mix.
 inline constexpr uint64_t mix64(uint64_t z) {

@@ -1,0 +1,352 @@
+#pragma once
+// Samplers: where the uniform numbers of one camera sample come from.
+//
+//   sampler_plan plan(sampler_kind::sobol, seed, samples_per_pixel);
+//   pixel_sampler ps(plan, x, y, s, rng);       // sample s of pixel (x, y)
+//   float t = ps.get1d(sample_dimension::camera_time);
+//   uniform2 lens = ps.get2d(sample_dimension::camera_lens);
+//
+// Every random decision of a path draws from its own fixed dimension (sample_dimension below):
+// the camera's pixel, lens and time, and per bounce the light choice, the point on the light, the
+// material's lobe, its direction and Russian roulette. A dimension is 1-D or 2-D; a 2-D one is a
+// pair drawn together, so that its points are stratified in the plane and not only along each
+// axis. Three kinds:
+//
+//   independent  every number from the sample's own PCG stream (rng.h), in the order asked: the
+//                images rtweekend made before samplers existed, bit for bit
+//   stratified   jittered: the N samples of a pixel fall one per stratum of each dimension (N
+//                strata in 1-D, a k x k grid in 2-D with k = floor(sqrt(N)); the samples past k^2
+//                are uniform), the strata shuffled per pixel and dimension so that dimensions do
+//                not correlate ("padding", Kensler 2013; book 3's camera stratifies the pixel)
+//   sobol        the Sobol (0, 2)-sequence, Owen-scrambled by hashing (Burley, "Practical
+//                Hash-based Owen Scrambling", JCGT 2020, with Vegdahl's 2021 hash), its index
+//                taken along a Morton curve over the image under a nested random scramble
+//                (Ahmed and Wonka, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling
+//                Error via Hierarchical Ordering of Pixels", 2020; pbrt-v4's ZSobolSampler): each
+//                pixel's samples are a stratified (0, 2)-sequence, and neighbouring pixels take
+//                disjoint parts of one sequence, so their errors differ as blue noise does
+//
+// Every value is a pure function of (seed, pixel, sample index, dimension): the image is
+// bit-identical at any thread count, and adaptive sampling may stop a pixel after any number of
+// samples. Numbers a decision draws beyond its dimension (a material that asks for more than its
+// block holds) come from the sample's PCG stream.
+
+#include "rng.h"
+
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace rt {
+
+enum class sampler_kind : uint8_t { independent, stratified, sobol };
+
+inline const char* sampler_name(sampler_kind k) {
+    switch (k) {
+    case sampler_kind::independent: return "independent";
+    case sampler_kind::stratified: return "stratified";
+    case sampler_kind::sobol: return "sobol";
+    }
+    return "?";
+}
+
+// The sampler named `name` ("independent", "stratified" or "sobol"); false for another name.
+inline bool parse_sampler(const std::string& name, sampler_kind& k) {
+    for (sampler_kind candidate : {sampler_kind::independent, sampler_kind::stratified, sampler_kind::sobol})
+        if (name == sampler_name(candidate)) {
+            k = candidate;
+            return true;
+        }
+    return false;
+}
+
+// The dimensions of one camera sample. A path's bounce b uses bounce(b) + one of the offsets.
+namespace sample_dimension {
+inline constexpr uint32_t camera_pixel = 0; // 2-D: the point in the pixel
+inline constexpr uint32_t camera_lens = 1;  // 2-D: the point on the lens
+inline constexpr uint32_t camera_time = 2;  // 1-D: the moment in the shutter interval
+inline constexpr uint32_t light_choice = 0;   // 1-D: which light
+inline constexpr uint32_t light_position = 1; // 2-D: the point on it
+inline constexpr uint32_t lobe = 2;           // 1-D: the material's first choice (lobe, Fresnel)
+inline constexpr uint32_t direction = 3;      // 2-D: the material's direction
+inline constexpr uint32_t lobe_extra = 4;     // 1-D: a material's second 1-D number
+inline constexpr uint32_t direction_extra = 5; // 2-D: a material's second pair
+inline constexpr uint32_t strategy = 6;       // 1-D: the mixture estimator's light-or-material choice
+inline constexpr uint32_t roulette = 7;       // 1-D: Russian roulette
+inline constexpr uint32_t per_bounce = 8;
+inline constexpr uint32_t bounce(int depth) { return 3 + per_bounce * uint32_t(depth); }
+} // namespace sample_dimension
+
+// What a sampler needs to know of the whole render, computed once.
+struct sampler_plan {
+    sampler_kind kind = sampler_kind::independent;
+    uint32_t seed = 0;           // a hash of the render's seed
+    uint32_t samples = 1;        // samples per pixel, N
+    uint32_t grid = 1;           // stratified 2-D: k = floor(sqrt(N))
+    int log2_samples = 0;        // sobol: ceil(log2 N), the bits of the sample index
+
+    sampler_plan() = default;
+    sampler_plan(sampler_kind k, uint64_t render_seed, int samples_per_pixel);
+
+    // A 64-bit hash of (seed, dimension), kept for the first dimensions (a path of 32 bounces).
+    uint64_t dimension_hash(uint32_t dimension) const {
+        return dimension < hashed_dimensions ? dimension_hashes_[dimension] : hash_dimension(dimension);
+    }
+
+  private:
+    static constexpr uint32_t hashed_dimensions = 3 + 8 * 32;
+    uint64_t hash_dimension(uint32_t dimension) const { return mix64((uint64_t(dimension) << 32) | seed); }
+    uint64_t dimension_hashes_[hashed_dimensions] = {};
+};
+
+class pixel_sampler {
+  public:
+    // Sample `sample` of pixel (x, y); `rng` is the sample's own PCG stream (sample_rng), which
+    // the independent sampler draws from and every sampler falls back on.
+    pixel_sampler(const sampler_plan& plan, int x, int y, int sample, pcg32& rng);
+
+    float get1d(uint32_t dimension);
+    uniform2 get2d(uint32_t dimension);
+    pcg32& rng() { return rng_; }
+
+  private:
+    const sampler_plan& plan_;
+    uint32_t pixel_hash_;    // stratified: this pixel, hashed
+    uint32_t sample_;
+    uint32_t reversed_index_; // sobol: the Morton-curve index (below), its bits reversed
+    uint64_t high_index_hash_; // sobol: a hash of the index's bits past the 32nd, or 0
+    pcg32& rng_;
+};
+
+// A decision's uniforms as the material contract and the light set draw them (next_float() and
+// next_2d()): 1-D numbers from the dimensions dims1[0], dims1[1] in turn, pairs from dims2[0],
+// dims2[1]; past those (or where a dimension is `stream`), from the sample's PCG stream.
+class dimension_uniforms {
+  public:
+    static constexpr uint32_t stream = ~0u;
+    dimension_uniforms(pixel_sampler& s, uint32_t dim1, uint32_t dim2, uint32_t dim1_extra = stream,
+                       uint32_t dim2_extra = stream)
+        : s_(s), dims1_{dim1, dim1_extra}, dims2_{dim2, dim2_extra} {}
+    float next_float() {
+        const uint32_t d = used1_ < 2 ? dims1_[used1_++] : stream;
+        return d != stream ? s_.get1d(d) : s_.rng().next_float();
+    }
+    uniform2 next_2d() {
+        const uint32_t d = used2_ < 2 ? dims2_[used2_++] : stream;
+        return d != stream ? s_.get2d(d) : draw_2d(s_.rng());
+    }
+
+  private:
+    pixel_sampler& s_;
+    uint32_t dims1_[2], dims2_[2];
+    int used1_ = 0, used2_ = 0;
+};
+
+// The uniforms of a bounce's material sample and of its light sample.
+inline dimension_uniforms material_uniforms(pixel_sampler& s, int depth) {
+    const uint32_t b = sample_dimension::bounce(depth);
+    return {s, b + sample_dimension::lobe, b + sample_dimension::direction, b + sample_dimension::lobe_extra,
+            b + sample_dimension::direction_extra};
+}
+inline dimension_uniforms light_uniforms(pixel_sampler& s, int depth) {
+    const uint32_t b = sample_dimension::bounce(depth);
+    return {s, b + sample_dimension::light_choice, b + sample_dimension::light_position};
+}
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+inline constexpr uint32_t reverse_bits32(uint32_t v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+#if defined(__GNUC__)
+    return __builtin_bswap32(v); // the byte order reversed in one instruction
+#else
+    v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
+    return (v >> 16) | (v << 16);
+#endif
+}
+
+// A 32-bit hash of two words (mix64 of their concatenation, folded).
+inline constexpr uint32_t hash32(uint64_t a, uint64_t b) {
+    const uint64_t h = mix64(a * 0x9e3779b97f4a7c15ULL ^ mix64(b + 0x632be59bd9b4e019ULL));
+    return static_cast<uint32_t>(h ^ (h >> 32));
+}
+
+// Owen scrambling of a 32-bit fraction (bit 31 = 1/2) by hashing: each bit flipped by a function
+// of the bits above it and the seed. Burley (2020) showed that a hash in which every bit depends
+// only on lower bits (the Laine-Karras form), applied to the reversed bits, is exactly a nested
+// uniform scramble; the multipliers are Vegdahl's improved ones ("Building a Better LK Hash",
+// 2021), as pbrt-v4 uses them.
+inline constexpr uint32_t laine_karras_hash(uint32_t v, uint32_t seed) {
+    v ^= v * 0x3d20adeau;
+    v += seed;
+    v *= (seed >> 16) | 1u;
+    v ^= v * 0x05526c56u;
+    v ^= v * 0x53a22864u;
+    return v;
+}
+inline constexpr uint32_t owen_scramble(uint32_t v, uint32_t seed) {
+    return reverse_bits32(laine_karras_hash(reverse_bits32(v), seed));
+}
+
+// The first two dimensions of the Sobol sequence as 32-bit fractions. Dimension 0 is van der
+// Corput's (the index's bits reversed); dimension 1 has the generator matrix of the primitive
+// polynomial x + 1, whose columns are v_0 = 2^31, v_i = v_{i-1} xor (v_{i-1} >> 1) (Pascal's
+// triangle mod 2). Together they form a (0, 2)-sequence: every power-of-two run of 2^m points
+// puts one point in each of the 2^m elementary intervals of every shape.
+inline constexpr uint32_t sobol_dimension0(uint32_t index) { return reverse_bits32(index); }
+inline constexpr uint32_t sobol_dimension1(uint32_t index) {
+    uint32_t v = 0, column = 0x80000000u;
+    for (; index; index >>= 1, column ^= column >> 1)
+        if (index & 1u) v ^= column;
+    return v;
+}
+
+// Sobol's dimension 1 in bit-reversed form: reversed_sobol_dimension1(reverse(i)) =
+// reverse(sobol_dimension1(i)). The scrambles below work on reversed bits, so the sampler keeps
+// indices reversed and saves two reversals a pair. The map is linear over GF(2): a table per
+// byte of the argument, built at compile time.
+struct reversed_sobol_dimension1_table {
+    uint32_t bytes[4][256]; // bytes[k][b]: the image of b << 8k
+    constexpr reversed_sobol_dimension1_table() : bytes{} {
+        for (int k = 0; k < 4; ++k)
+            for (uint32_t b = 0; b < 256; ++b)
+                bytes[k][b] = reverse_bits32(sobol_dimension1(reverse_bits32(b << (8 * k))));
+    }
+};
+inline constexpr reversed_sobol_dimension1_table reversed_sobol_dimension1_bytes{};
+inline uint32_t reversed_sobol_dimension1(uint32_t r) {
+    const auto& t = reversed_sobol_dimension1_bytes.bytes;
+    return t[0][r & 0xffu] ^ t[1][(r >> 8) & 0xffu] ^ t[2][(r >> 16) & 0xffu] ^ t[3][r >> 24];
+}
+
+inline constexpr float fraction_to_float(uint32_t v) { return static_cast<float>(v >> 8) * 0x1p-24f; }
+
+// The bits of x (16 of them) spread to the even bit positions.
+inline constexpr uint64_t spread_bits(uint32_t x) {
+    uint64_t v = x & 0xffffu;
+    v = (v | (v << 8)) & 0x00ff00ffULL;
+    v = (v | (v << 4)) & 0x0f0f0f0fULL;
+    v = (v | (v << 2)) & 0x33333333ULL;
+    v = (v | (v << 1)) & 0x55555555ULL;
+    return v;
+}
+
+// A permutation of [0, n), chosen by `seed`: a bijection of the smallest power-of-two range
+// holding n (odd multiplications, xor-shifts and additions, each invertible modulo 2^k), walked
+// until it lands inside [0, n) ("cycle walking"; fewer than two steps on average).
+inline uint32_t permute_index(uint32_t i, uint32_t n, uint32_t seed) {
+    if (n <= 1) return 0;
+    uint32_t mask = n - 1;
+    mask |= mask >> 1;
+    mask |= mask >> 2;
+    mask |= mask >> 4;
+    mask |= mask >> 8;
+    mask |= mask >> 16;
+    const uint32_t m1 = seed | 1u, m2 = (seed * 0x9e3779b9u) | 1u, add = (seed >> 16) * 0x85ebca6bu;
+    do {
+        i ^= seed & mask;
+        i = (i * m1) & mask;
+        i ^= (i & mask) >> 3;
+        i = (i * m2 + add) & mask;
+        i ^= (i & mask) >> 5;
+    } while (i >= n);
+    return i;
+}
+
+} // namespace detail
+
+inline sampler_plan::sampler_plan(sampler_kind k, uint64_t render_seed, int samples_per_pixel)
+    : kind(k), seed(detail::hash32(render_seed, 0x5eedULL)), samples(uint32_t(samples_per_pixel > 0 ? samples_per_pixel : 1)) {
+    for (uint32_t d = 0; d < hashed_dimensions; ++d) dimension_hashes_[d] = hash_dimension(d);
+    while ((grid + 1) * (grid + 1) <= samples) ++grid;
+    while ((uint64_t(1) << log2_samples) < samples) ++log2_samples;
+}
+
+inline pixel_sampler::pixel_sampler(const sampler_plan& plan, int x, int y, int sample, pcg32& rng)
+    : plan_(plan), pixel_hash_(0), sample_(uint32_t(sample)), reversed_index_(0), high_index_hash_(0), rng_(rng) {
+    if (plan.kind == sampler_kind::stratified) pixel_hash_ = detail::hash32(plan.seed, (uint64_t(y) << 32) | uint32_t(x));
+    if (plan.kind == sampler_kind::sobol) {
+        // (Morton code of the pixel) * 2^log2_samples + sample.
+        const uint64_t index =
+            (((detail::spread_bits(uint32_t(y)) << 1) | detail::spread_bits(uint32_t(x))) << plan.log2_samples) | sample_;
+        reversed_index_ = detail::reverse_bits32(static_cast<uint32_t>(index));
+        if (index >> 32) high_index_hash_ = mix64(index >> 32);
+    }
+}
+
+namespace detail {
+
+// The Sobol index of a camera sample in a dimension whose hash is `salt`: the Morton-curve index
+// (pixel code, then sample bits) under a nested uniform scramble, each bit flipped by a hash of
+// the bits above it (Burley's shuffle, owen_scramble applied to the index). Pixels near on the
+// curve share their high bits and so draw from one power-of-two block of the sequence, each from
+// its own part of it (whose points are well spread: the (0, 2) property); every aligned
+// power-of-two run of a pixel's own samples stays such a part, so adaptive sampling may stop at
+// any power of two. Different dimensions scramble differently and do not correlate. This is
+// Ahmed and Wonka's ordering with base-2 nested scrambling where pbrt-v4 permutes base-4 digits:
+// one hash instead of a loop over the digits, which made sampling a fifth of the cover scene's
+// time. Index bits past the 32nd (images above 2^(16 - log2(spp)/2) pixels a side) would change
+// a sample below 2^-32 only; they go into the hash instead.
+// Returned reversed: laine_karras_hash(reverse(index)) is reverse(scrambled index).
+inline uint32_t reversed_zsobol_index(uint32_t reversed_index, uint32_t salt) {
+    return laine_karras_hash(reversed_index, salt);
+}
+
+// A float uniform from a 64-bit hash.
+inline float hash_to_float(uint64_t h) { return static_cast<float>(h >> 40) * 0x1p-24f; }
+
+} // namespace detail
+
+inline float pixel_sampler::get1d(uint32_t dimension) {
+    switch (plan_.kind) {
+    case sampler_kind::independent: break;
+    case sampler_kind::stratified: {
+        const uint32_t seed = detail::hash32(pixel_hash_, dimension);
+        const uint32_t stratum = detail::permute_index(sample_ % plan_.samples, plan_.samples, seed);
+        const float jitter = detail::hash_to_float(mix64((uint64_t(seed) << 32) ^ sample_ ^ 0xa5a5ULL));
+        const float u = (float(stratum) + jitter) / float(plan_.samples);
+        return u < 1.0f ? u : 0x1.fffffep-1f;
+    }
+    case sampler_kind::sobol: {
+        const uint64_t h = plan_.dimension_hash(dimension) ^ high_index_hash_;
+        const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_, uint32_t(h));
+        // owen_scramble(sobol_dimension0(index)) = reverse(lk(index)), index = reverse(reversed).
+        return detail::fraction_to_float(
+            detail::reverse_bits32(detail::laine_karras_hash(detail::reverse_bits32(reversed), uint32_t(h >> 32))));
+    }
+    }
+    return rng_.next_float();
+}
+
+inline uniform2 pixel_sampler::get2d(uint32_t dimension) {
+    switch (plan_.kind) {
+    case sampler_kind::independent: break;
+    case sampler_kind::stratified: {
+        const uint32_t seed = detail::hash32(pixel_hash_, 0x200000000ULL | dimension);
+        const uint32_t k = plan_.grid, cells = k * k;
+        const uint32_t cell = detail::permute_index(sample_ % plan_.samples, plan_.samples, seed);
+        const uint64_t h = mix64((uint64_t(seed) << 32) ^ sample_ ^ 0x5a5aULL);
+        const float j1 = detail::hash_to_float(h), j2 = detail::hash_to_float(mix64(h));
+        if (cell >= cells) return {j1, j2}; // past the k x k grid: uniform
+        const float a = (float(cell % k) + j1) / float(k), b = (float(cell / k) + j2) / float(k);
+        return {a < 1.0f ? a : 0x1.fffffep-1f, b < 1.0f ? b : 0x1.fffffep-1f};
+    }
+    case sampler_kind::sobol: {
+        const uint64_t h = plan_.dimension_hash(dimension) ^ high_index_hash_;
+        const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_, uint32_t(h));
+        const uint32_t scramble0 = uint32_t(h >> 32), scramble1 = scramble0 * 0x9e3779b9u + 0x7f4a7c15u;
+        return {detail::fraction_to_float(detail::reverse_bits32(
+                    detail::laine_karras_hash(detail::reverse_bits32(reversed), scramble0))),
+                detail::fraction_to_float(detail::reverse_bits32(
+                    detail::laine_karras_hash(detail::reversed_sobol_dimension1(reversed), scramble1)))};
+    }
+    }
+    return draw_2d(rng_);
+}
+
+} // namespace rt
