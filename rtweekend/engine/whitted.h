@@ -44,6 +44,7 @@
 // bytes with the bounds as without them.
 
 #include "../io/image_write.h"
+#include "../io/input_limits.h"
 #include "../whitted_material.h"
 #include "../whitted_scene.h"
 #include "bsdf.h"
@@ -340,6 +341,8 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     if (c.width <= 0 || c.height <= 0)
         throw scene_error("image resolution must be positive, got " + std::to_string(c.width) + "x" +
                           std::to_string(c.height));
+    // The loader checks this too; a scene built in code reaches here unchecked.
+    check_image_size(uint64_t(c.width), uint64_t(c.height), "camera " + std::to_string(camera_index) + "'s image");
     if (!finite3(c.position) || !finite3(c.gaze) || !finite3(c.up) ||
         !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
         throw scene_error("camera settings must be finite numbers");

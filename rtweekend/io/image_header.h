@@ -100,9 +100,9 @@ inline std::string bmp_header_problem(const std::string& b) {
     // Sizes are at most 2^24 and bits at most 32, so this cannot overflow.
     const uint64_t row_bytes = (width * bits + 31) / 32 * 4, needed = data_offset + row_bytes * height;
     if (needed > b.size())
-        return "BMP raster is truncated: " + std::to_string(width) + "x" + std::to_string(height) + " at " +
-               std::to_string(bits) + " bits per pixel needs " + std::to_string(needed) + " bytes, the file has " +
-               std::to_string(b.size());
+        return "BMP raster is truncated: needs " + std::to_string(needed) + " bytes, the file has " +
+               std::to_string(b.size()) + " (" + std::to_string(width) + "x" + std::to_string(height) + " at " +
+               std::to_string(bits) + " bits per pixel)";
     return {};
 }
 

@@ -153,7 +153,6 @@ inline loaded_image decode_ppm(const std::string& bytes, const std::string& name
     uint64_t h = c.read_integer("height", 1, max_image_side);
     c.require_space("height");
     uint64_t maxval = c.read_integer("maxval", 1, 65535);
-    check_size(w, h, name, c.format);
 
     loaded_image out{image(0, 0), true, c.format};
     const uint64_t count = w * h * 3;
@@ -167,6 +166,7 @@ inline loaded_image decode_ppm(const std::string& bytes, const std::string& name
         if (available < needed)
             c.fail("raster is truncated: " + size_text(w, h) + " needs " + std::to_string(needed) + " bytes, the file has " +
                    std::to_string(available));
+        check_size(w, h, name, c.format); // a file that does hold so many pixels
         out.pixels = image(int(w), int(h));
         float* dst = out.pixels.data().data();
         const auto* src = reinterpret_cast<const unsigned char*>(bytes.data() + c.pos);
@@ -184,6 +184,7 @@ inline loaded_image decode_ppm(const std::string& bytes, const std::string& name
     // truncated; checking first keeps a malformed header from allocating a huge image.
     if (count * 2 - 1 > bytes.size() - c.pos)
         c.fail("raster is truncated: " + size_text(w, h) + " needs " + std::to_string(count) + " values, the file is too short");
+    check_size(w, h, name, c.format);
     out.pixels = image(int(w), int(h));
     float* dst = out.pixels.data().data();
     for (uint64_t i = 0; i < count; ++i) {
@@ -210,7 +211,6 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
     c.require_space("width");
     uint64_t h = c.read_integer("height", 1, max_image_side);
     c.require_space("height");
-    check_size(w, h, name, c.format);
 
     // The scale: its sign gives the byte order (negative = little-endian); its magnitude is
     // not applied, as most readers do not.
@@ -238,6 +238,7 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
                std::to_string(available));
     if (available > needed)
         c.fail("has " + std::to_string(available - needed) + " bytes after the raster of a " + size_text(w, h) + " image");
+    check_size(w, h, name, c.format);
 
     const bool little_endian = scale < 0;
     loaded_image out{image(int(w), int(h)), false, "PFM"};

@@ -175,6 +175,8 @@ class ply_data {
                      (ply_type_is_integer(t) ? "an integer" : "a number"));
             // Text can say anything; a binary file could only hold what the type holds, and the
             // text must mean the same (a uchar of -70000, or a float of 1e300, is damage).
+            if (!std::isfinite(value))
+                fail("'" + std::string(begin, end) + "' (property '" + property + "') is not a finite number");
             if (!fits(t, value))
                 fail("'" + std::string(begin, end) + "' (property '" + property + "') does not fit its type " +
                      ply_type_name(t) + " (" + ply_type_range(t) + ")");
