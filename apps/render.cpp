@@ -24,8 +24,8 @@
 
 namespace {
 
-// Where each camera's image goes: ImageName inside the output directory. All are checked (known
-// format, writable, no two cameras on one file) before anything is rendered.
+// Where each camera's image goes: ImageName inside the output directory. All are checked (inside
+// that directory, known format, writable, no two cameras on one file) before anything is rendered.
 std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std::string& scene_path,
                                       const std::string& directory) {
     namespace fs = std::filesystem;
@@ -42,6 +42,11 @@ std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std:
         const std::string& name = scene.cameras[i].image_name;
         if (name.empty())
             throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + " has no <ImageName>");
+        // The loader refuses such names already; a scene built in code reaches here unchecked.
+        std::string unsafe = rt::image_name_problem(name);
+        if (!unsafe.empty())
+            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name + "' " +
+                                  unsafe);
         std::string path = (dir / name).lexically_normal().string();
         std::string ext = rt::lowercase_extension(path);
         if (ext != ".png" && ext != ".ppm")
@@ -53,6 +58,16 @@ std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std:
                                       " would both write '" + path + "'");
         fs::path parent = fs::path(path).parent_path();
         if (!parent.empty()) fs::create_directories(parent, ec);
+        // A symbolic link inside the directory could still lead out of it: where the file really
+        // goes must lie under where the directory really is.
+        const fs::path real_dir = fs::weakly_canonical(dir, ec), real_path = fs::weakly_canonical(path, ec);
+        if (!ec) {
+            auto rel = real_path.lexically_relative(real_dir);
+            if (rel.empty() || rel.is_absolute() || *rel.begin() == "..")
+                throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +
+                                      "' resolves to '" + real_path.string() + "', outside the output directory '" +
+                                      real_dir.string() + "'");
+        }
         rt::check_output_path(path);
         paths.push_back(path);
     }
@@ -125,6 +140,14 @@ int main(int argc, char** argv) {
         }
         rt::scene_description scene = rt::load_scene(opt.positional[0]);
         opt.apply(scene.cam);
+        // --width may make the image larger than the file did: the pixel limit again, before the
+        // image is allocated.
+        try {
+            rt::check_camera_image_size(scene.cam);
+        } catch (const rt::scene_error& e) {
+            if (!opt.width) throw;
+            throw rt::scene_error("--width " + std::to_string(*opt.width) + ": " + e.what());
+        }
         app::write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights).img);
     });
 }

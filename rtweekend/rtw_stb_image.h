@@ -19,14 +19,24 @@
 // a 2.2 power, then quantises them to linear bytes; ours keeps the file's bytes and decodes once.
 // A Radiance .hdr file stores linear radiance: linear() returns it unchanged (and unclamped), and
 // pixel_data() holds its sRGB encoding, clamped to [0, 1].
+//
+// The file is read whole by io/file.h's read_file (a regular file of at most 4 GiB), and its
+// headers are checked before stb_image decodes it (io/image_header.h for PNG and BMP, then the
+// size stb_image reports against io/input_limits.h's 2^28 pixels): stb_image allocates the image a
+// header describes before it finds out whether the file holds it.
 
+#include "io/file.h"
+#include "io/image_header.h"
 #include "scene_error.h"
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace rt {
@@ -107,6 +117,23 @@ double linear_to_srgb(double linear);
 
 namespace rt {
 
+namespace detail {
+
+// What is wrong with an encoded image before stb_image may decode it, "" if nothing: the PNG and
+// BMP headers (image_header.h), then, for every format stb_image knows, the size it reads from
+// the header (stbi_info parses headers only) against the limits of input_limits.h.
+inline std::string stb_input_problem(const std::string& bytes) {
+    std::string problem = image_header_problem(bytes);
+    if (!problem.empty()) return problem;
+    if (bytes.size() > size_t(INT_MAX)) return "the file is larger than stb_image can decode (2 GiB)";
+    int w = 0, h = 0, channels = 0;
+    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels))
+        return image_size_problem(uint64_t(w < 0 ? 0 : w), uint64_t(h < 0 ? 0 : h), "the image");
+    return {}; // not an image stb_image knows: decoding says so
+}
+
+} // namespace detail
+
 inline double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 inline double linear_to_srgb(double x) {
@@ -129,14 +156,19 @@ inline rtw_image::rtw_image(const char* image_filename) {
 }
 
 inline bool rtw_image::load(const std::string& filename) {
-    std::FILE* f = std::fopen(filename.c_str(), "rb");
-    if (!f) return false;
+    std::error_code ec;
+    if (!std::filesystem::exists(filename, ec)) return false;
+    const std::string encoded = read_file(filename, "image texture");
+    const std::string problem = detail::stb_input_problem(encoded);
+    if (!problem.empty()) throw scene_error("cannot read image texture '" + filename + "': " + problem);
+    const auto* file = reinterpret_cast<const stbi_uc*>(encoded.data());
+    const int file_size = int(encoded.size()); // at most INT_MAX: checked above
     int w = 0, h = 0, channels = 0;
-    const bool hdr = stbi_is_hdr_from_file(f) != 0; // rewinds the file
+    const bool hdr = stbi_is_hdr_from_memory(file, file_size) != 0;
     std::vector<float> lin;
     std::vector<unsigned char> bytes;
     if (hdr) {
-        float* data = stbi_loadf_from_file(f, &w, &h, &channels, 3);
+        float* data = stbi_loadf_from_memory(file, file_size, &w, &h, &channels, 3);
         if (data) {
             lin.assign(data, data + size_t(w) * size_t(h) * 3);
             stbi_image_free(data);
@@ -145,7 +177,7 @@ inline bool rtw_image::load(const std::string& filename) {
                 bytes[i] = static_cast<unsigned char>(std::lround(255 * linear_to_srgb(lin[i])));
         }
     } else {
-        unsigned char* data = stbi_load_from_file(f, &w, &h, &channels, 3);
+        unsigned char* data = stbi_load_from_memory(file, file_size, &w, &h, &channels, 3);
         if (data) {
             bytes.assign(data, data + size_t(w) * size_t(h) * 3);
             stbi_image_free(data);
@@ -156,7 +188,6 @@ inline bool rtw_image::load(const std::string& filename) {
             for (size_t i = 0; i < bytes.size(); ++i) lin[i] = table[bytes[i]];
         }
     }
-    std::fclose(f);
     if (bytes.empty()) {
         const char* reason = stbi_failure_reason();
         throw scene_error("cannot read image texture '" + filename + "': " +

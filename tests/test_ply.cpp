@@ -343,7 +343,9 @@ TEST_CASE("ply: bad ASCII data names the line, the entry and the problem") {
     check_ply_error(dir, triangle_header + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", {":11:", "vertex 1", "before property 'z'"});
     check_ply_error(dir, triangle_header + "0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n", {":10:", "vertex 0", "more values"});
     check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", {"face 0", "'1.5'", "not an integer"});
-    check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n", {"face 0", "negative length"});
+    // A list length of -3 in a uchar: refused as a value its type cannot hold (issue 14), before
+    // it could be taken for a negative length.
+    check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n", {"face 0", "'-3'", "does not fit its type uchar"});
     // Counts that do not match the data: too little, too much.
     check_ply_error(dir, triangle_header + "0 0 0\n1 0 0\n0 1 0\n", {"more than the", "truncated"});
     check_ply_error(dir, triangle_header + "0 0 0 1 0 0 0 1 0 3 0 1 2\n", {"vertex 0", "more values"});

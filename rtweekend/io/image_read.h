@@ -31,12 +31,14 @@
 #include "file.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace rt {
@@ -130,11 +132,16 @@ struct header_cursor {
     }
 };
 
-// Largest width or height accepted (stb_image's own limit); the raster size is then checked
-// against the file's length before anything is allocated.
-constexpr uint64_t max_image_side = uint64_t(1) << 24;
-
 inline std::string size_text(uint64_t w, uint64_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// The pixel limit of input_limits.h, before a PPM or PFM raster is allocated.
+inline void check_size(uint64_t w, uint64_t h, const std::string& name, const char* format) {
+    try {
+        check_image_size(w, h, std::string(format) + " image");
+    } catch (const scene_error& e) {
+        read_error(name, e.what());
+    }
+}
 
 inline loaded_image decode_ppm(const std::string& bytes, const std::string& name) {
     const bool binary = bytes[1] == '6';
@@ -159,6 +166,7 @@ inline loaded_image decode_ppm(const std::string& bytes, const std::string& name
         if (available < needed)
             c.fail("raster is truncated: " + size_text(w, h) + " needs " + std::to_string(needed) + " bytes, the file has " +
                    std::to_string(available));
+        check_size(w, h, name, c.format); // a file that does hold so many pixels
         out.pixels = image(int(w), int(h));
         float* dst = out.pixels.data().data();
         const auto* src = reinterpret_cast<const unsigned char*>(bytes.data() + c.pos);
@@ -176,6 +184,7 @@ inline loaded_image decode_ppm(const std::string& bytes, const std::string& name
     // truncated; checking first keeps a malformed header from allocating a huge image.
     if (count * 2 - 1 > bytes.size() - c.pos)
         c.fail("raster is truncated: " + size_text(w, h) + " needs " + std::to_string(count) + " values, the file is too short");
+    check_size(w, h, name, c.format);
     out.pixels = image(int(w), int(h));
     float* dst = out.pixels.data().data();
     for (uint64_t i = 0; i < count; ++i) {
@@ -209,10 +218,17 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
     while (c.pos < bytes.size() && !is_header_space(bytes[c.pos])) ++c.pos;
     std::string scale_text = bytes.substr(start, c.pos - start);
     if (scale_text.empty()) c.fail("header is truncated before the scale");
-    char* end = nullptr;
-    double scale = std::strtod(scale_text.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(scale) || scale == 0)
-        c.fail("scale '" + scale_text + "' is not a non-zero number");
+    // The whole token must be the number: strtod would stop at a NUL byte and take "-1\0junk"
+    // for -1. from_chars takes no '+', which a scale may have.
+    const char* first = scale_text.data() + (scale_text[0] == '+' ? 1 : 0);
+    const char* last = scale_text.data() + scale_text.size();
+    double scale = 0;
+    auto parsed = std::from_chars(first, last, scale, std::chars_format::general);
+    if (parsed.ec != std::errc() || parsed.ptr != last || !std::isfinite(scale) || scale == 0) {
+        std::string shown;
+        for (char ch : scale_text) shown += printable(ch);
+        c.fail("scale '" + shown + "' is not a non-zero number");
+    }
     c.end_header("scale");
 
     const uint64_t channels = colour ? 3 : 1;
@@ -222,6 +238,7 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
                std::to_string(available));
     if (available > needed)
         c.fail("has " + std::to_string(available - needed) + " bytes after the raster of a " + size_text(w, h) + " image");
+    check_size(w, h, name, c.format);
 
     const bool little_endian = scale < 0;
     loaded_image out{image(int(w), int(h)), false, "PFM"};
@@ -245,39 +262,6 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
     return out;
 }
 
-inline uint32_t little_endian_u32(const std::string& bytes, size_t at) {
-    const auto* b = reinterpret_cast<const unsigned char*>(bytes.data() + at);
-    return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
-}
-
-// stb_image reads past the end of a BMP as zeros instead of failing, so an uncompressed BMP cut
-// short would come back with black rows. This is the length its headers say it needs: pixel
-// data offset + rows padded to 4 bytes, or 0 when the file does not say (compressed, or a header
-// this check does not know; stb_image still validates those).
-inline uint64_t bmp_needed_length(const std::string& bytes) {
-    if (bytes.size() < 30) return 0; // too short for the headers: stb_image rejects it
-    const uint64_t data_offset = little_endian_u32(bytes, 10), info_size = little_endian_u32(bytes, 14);
-    uint64_t width, height, bits;
-    if (info_size == 12) { // OS/2 BITMAPCOREHEADER: 16-bit sizes, never compressed
-        width = little_endian_u32(bytes, 18) & 0xffff;
-        height = little_endian_u32(bytes, 20) & 0xffff;
-        bits = little_endian_u32(bytes, 24) & 0xffff;
-    } else if (info_size >= 40 && bytes.size() >= 34) {
-        const uint32_t compression = little_endian_u32(bytes, 30);
-        if (compression != 0 && compression != 3) return 0; // RLE or embedded JPEG/PNG
-        width = little_endian_u32(bytes, 18);
-        int32_t signed_height;
-        uint32_t h = little_endian_u32(bytes, 22);
-        std::memcpy(&signed_height, &h, 4);
-        height = uint64_t(signed_height < 0 ? -int64_t(signed_height) : int64_t(signed_height)); // negative = top-down
-        bits = little_endian_u32(bytes, 28) & 0xffff;
-    } else {
-        return 0;
-    }
-    if (width > max_image_side || height > max_image_side || bits == 0 || bits > 32) return 0;
-    return data_offset + (width * bits + 31) / 32 * 4 * height;
-}
-
 // stb_image copies the first IDAT chunk of a PNG into a buffer it has not allocated yet when that
 // chunk is empty: memcpy to a null pointer, harmless in practice but undefined behaviour, which
 // the sanitizer builds stop on. Empty IDAT chunks carry no data, so they are dropped first.
@@ -297,6 +281,9 @@ inline std::string without_empty_png_data_chunks(const std::string& png) {
 
 inline loaded_image decode_with_stb(const std::string& bytes, const std::string& name, const char* format) {
     if (bytes.size() > size_t(INT32_MAX)) read_error(name, std::string(format) + " file is too large");
+    // The headers are checked here, not by stb_image, which allocates what they describe first.
+    std::string problem = stb_input_problem(bytes);
+    if (!problem.empty()) read_error(name, problem);
     int w = 0, h = 0, channels_in_file = 0;
     unsigned char* rgb = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &w,
                                                &h, &channels_in_file, 3);
@@ -315,11 +302,10 @@ inline loaded_image decode_png(const std::string& bytes, const std::string& name
     return decode_with_stb(without_empty_png_data_chunks(bytes), name, "PNG");
 }
 
+// stb_image reads past the end of a BMP as zeros instead of failing, so an uncompressed BMP cut
+// short would come back with black rows: image_header_problem (through decode_with_stb) refuses a
+// BMP whose headers promise more pixel data than the file holds.
 inline loaded_image decode_bmp(const std::string& bytes, const std::string& name) {
-    uint64_t needed = bmp_needed_length(bytes);
-    if (needed > bytes.size())
-        read_error(name, "BMP raster is truncated: needs " + std::to_string(needed) + " bytes, the file has " +
-                             std::to_string(bytes.size()));
     return decode_with_stb(bytes, name, "BMP");
 }
 

@@ -12,9 +12,14 @@
 #include "../mesh.h"
 #include "../scene_error.h"
 #include "file.h"
+#include "input_limits.h"
 #include "text_lines.h"
 
+#include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -31,8 +36,9 @@ namespace rt {
 class material;
 
 // Reads an OBJ file. Throws scene_error naming the file (and the line, where there is one) for a
-// missing or unreadable file, a number that is not a finite number, a face with fewer than three
-// corners or an index out of range, or a file without faces.
+// missing or unreadable file, a number that is not a finite number (within float's range), a face
+// with fewer than three corners or more than 1024, an index out of range, a NUL byte, or a file
+// without faces (detail::check_obj_text lists every check).
 std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
@@ -45,12 +51,45 @@ inline std::string first_line(const std::string& text) {
     return line;
 }
 
-// tinyobjloader reads what it can and silently turns a malformed number into 0, so the lines
-// that matter are checked first: every coordinate of v, vn and vt is a finite number, and every
-// face has at least three corners whose vertex indices (1-based, or negative = relative) exist.
-// Throws scene_error "path:LINE: problem".
+// Whether the integer prefix atoi would read from `part` (sign and digits) fits an int: atoi
+// is undefined beyond that, and tinyobjloader reads indices, smoothing groups and tag counts
+// with it.
+inline bool obj_int_prefix_fits(const std::string& part) {
+    size_t i = 0;
+    if (i < part.size() && (part[i] == '+' || part[i] == '-')) ++i;
+    uint64_t v = 0;
+    for (; i < part.size() && part[i] >= '0' && part[i] <= '9'; ++i) {
+        v = v * 10 + uint64_t(part[i] - '0');
+        if (v > uint64_t(INT_MAX)) return false;
+    }
+    return true;
+}
+
+// Whether `word` is a number, whole, that a float holds: tinyobjloader parses in double and
+// converts to float, which is undefined beyond float's range.
+inline bool obj_float_fits(const std::string& word) {
+    char* stop = nullptr;
+    double x = std::strtod(word.c_str(), &stop);
+    return stop != word.c_str() && stop == word.c_str() + word.size() && std::fabs(x) <= double(FLT_MAX);
+}
+
+// tinyobjloader reads what it can and silently turns a malformed number into 0, converts numbers
+// with undefined behaviour when they are out of range, and splits a polygon into triangles in
+// time quadratic in its corners; so the lines that matter are checked first. Throws scene_error
+// "path:LINE: problem" for:
+//   - a NUL byte anywhere (a text format holds none);
+//   - a coordinate of v, vn or vt that is not a number, whole, within float's range;
+//   - a face (f) with fewer than three corners or more than max_obj_face_corners (1024), and any
+//     index of f, l or p (vertex, texture coordinate or normal: "v/vt/vn", 1-based, or negative
+//     = relative) that is 0, does not exist (so far in the file), or is beyond an int;
+//   - a number on an s, t or vw line that is beyond an int.
 inline void check_obj_text(const std::string& text, const std::string& path) {
-    size_t vertices = 0;
+    if (size_t nul = text.find('\0'); nul != std::string::npos)
+        throw scene_error(path + ":" + std::to_string(line_index(text).line_of(nul)) +
+                          ": malformed OBJ file: a NUL byte (is this a binary or damaged file?)");
+    size_t counts[3] = {0, 0, 0}; // v, vt, vn lines so far
+    const char* count_names[3] = {"vertex", "texture coordinate", "normal"};
+    const char* plural_names[3] = {"vertices", "texture coordinates", "normals"};
     text_lines lines(text);
     for (std::string_view text_line; lines.next(text_line);) {
         std::istringstream line{std::string(text_line)};
@@ -61,27 +100,52 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
         if (!(line >> keyword)) continue;
         if (keyword == "v" || keyword == "vn" || keyword == "vt") {
             size_t needed = keyword == "vt" ? 1 : 3, count = 0;
-            for (std::string word; line >> word; ++count) {
-                char* stop = nullptr;
-                double x = std::strtod(word.c_str(), &stop);
-                if (stop == word.c_str() || *stop != '\0' || !std::isfinite(x))
-                    fail("'" + word + "' in a '" + keyword + "' line is not a finite number");
-            }
+            for (std::string word; line >> word; ++count)
+                if (!obj_float_fits(word))
+                    fail("'" + word + "' in a '" + keyword + "' line is not a finite number within float's range");
             if (count < needed) fail("a '" + keyword + "' line needs " + std::to_string(needed) + " numbers");
-            if (keyword == "v") ++vertices;
-        } else if (keyword == "f") {
+            ++counts[keyword == "v" ? 0 : keyword == "vt" ? 1 : 2];
+        } else if (keyword == "f" || keyword == "l" || keyword == "p") {
             size_t corners = 0;
             for (std::string word; line >> word; ++corners) {
-                char* stop = nullptr;
-                long index = std::strtol(word.c_str(), &stop, 10);
-                if (stop == word.c_str() || (*stop != '\0' && *stop != '/'))
-                    fail("face corner '" + word + "' does not start with a vertex index");
-                long resolved = index > 0 ? index : long(vertices) + index + 1; // negative: relative
-                if (index == 0 || resolved < 1 || resolved > long(vertices))
-                    fail("vertex index " + std::to_string(index) + " is out of range (" + std::to_string(vertices) +
-                         " vertices so far)");
+                if (keyword == "f" && corners == max_obj_face_corners)
+                    fail("a face has more than " + std::to_string(max_obj_face_corners) +
+                         " corners, the limit (split it into smaller polygons)");
+                // v, v/vt, v//vn or v/vt/vn: each index present is checked against its own list.
+                size_t start = 0;
+                for (int part = 0; part < 3 && start <= word.size(); ++part) {
+                    size_t slash = std::min(word.find('/', start), word.size());
+                    const std::string index_text = word.substr(start, slash - start);
+                    start = slash + 1;
+                    if (index_text.empty() && part > 0) continue; // "v//vn": no texture coordinate
+                    char* stop = nullptr;
+                    errno = 0;
+                    long long index = std::strtoll(index_text.c_str(), &stop, 10);
+                    if (stop == index_text.c_str() || stop != index_text.c_str() + index_text.size())
+                        fail("face corner '" + word + "' has '" + index_text + "', not an index");
+                    const long long n = (long long)counts[part];
+                    const long long resolved = index > 0 ? index : n + index + 1; // negative: relative
+                    if (errno == ERANGE || index > INT_MAX || index < -INT_MAX || index == 0 || resolved < 1 ||
+                        resolved > n)
+                        fail(std::string(count_names[part]) + " index " + index_text + " is out of range (" +
+                             std::to_string(n) + " " + (n == 1 ? count_names[part] : plural_names[part]) + " so far)");
+                }
             }
-            if (corners < 3) fail("a face has " + std::to_string(corners) + " corners (at least 3 needed)");
+            if (keyword == "f" && corners < 3)
+                fail("a face has " + std::to_string(corners) + " corners (at least 3 needed)");
+        } else if (keyword == "s" || keyword == "t" || keyword == "vw") {
+            // tinyobjloader reads these with atoi (group ids, tag counts, joint ids) or as floats.
+            for (std::string word; line >> word;)
+                for (size_t start = 0; start <= word.size();) {
+                    size_t slash = std::min(word.find('/', start), word.size());
+                    const std::string part = word.substr(start, slash - start);
+                    start = slash + 1;
+                    char* stop = nullptr;
+                    const double x = std::strtod(part.c_str(), &stop);
+                    const bool is_number = stop != part.c_str() && stop == part.c_str() + part.size();
+                    if (!obj_int_prefix_fits(part) || (is_number && !(std::fabs(x) <= double(FLT_MAX))))
+                        fail("'" + word + "' in a '" + keyword + "' line is out of range (of an int, or of a float)");
+                }
         }
     }
 }

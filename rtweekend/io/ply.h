@@ -17,14 +17,16 @@
 // An ASCII file holds one element per line, as the PLY format defines it.
 // Every problem is one scene_error naming the file: missing file, not a PLY file, a malformed
 // header, data that ends early or goes on after the last element, a value that is not a finite
-// number, a face with fewer than three corners or using a vertex that does not exist, element
+// number, an ASCII value outside its declared type (a uchar of -70000, a float beyond 3.4e38;
+// unused properties too), a NUL byte in the header or in ASCII data, a face with fewer than three corners or using a vertex that does not exist, element
 // counts that the file is too small to hold (checked before anything is allocated), a file
 // without faces.
 //
 // write_ply writes positions, faces, and normals and texture coordinates when every corner of
 // every face has them (vertices are duplicated where a position carries several normals or uvs),
 // as float coordinates and `list uchar int vertex_indices`; ASCII or binary little-endian; to a
-// temporary file renamed into place.
+// temporary file renamed into place. A value a float cannot hold (1e300, NaN) is refused rather
+// than written as inf or nan.
 
 #include "../mesh.h"
 #include "../scene_error.h"
@@ -36,6 +38,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -170,6 +173,13 @@ class ply_data {
             if (!parse_ply_number(begin, end, ply_type_is_integer(t), value))
                 fail("'" + std::string(begin, end) + "' (property '" + property + "') is not " +
                      (ply_type_is_integer(t) ? "an integer" : "a number"));
+            // Text can say anything; a binary file could only hold what the type holds, and the
+            // text must mean the same (a uchar of -70000, or a float of 1e300, is damage).
+            if (!std::isfinite(value))
+                fail("'" + std::string(begin, end) + "' (property '" + property + "') is not a finite number");
+            if (!fits(t, value))
+                fail("'" + std::string(begin, end) + "' (property '" + property + "') does not fit its type " +
+                     ply_type_name(t) + " (" + ply_type_range(t) + ")");
             return value;
         }
         size_t size = ply_type_size(t);
@@ -212,12 +222,12 @@ class ply_data {
         return count;
     }
 
-    // Skips one value of property p (a scalar or a whole list).
+    // Skips one value of property p (a scalar or a whole list). ASCII values are still checked:
+    // a property the mesh does not use must hold a number of its type all the same.
     void skip(const ply_property& p) {
         uint64_t n = p.is_list ? read_count(p) : 1;
         if (enc_ == encoding::ascii) {
-            const char *begin, *end;
-            for (uint64_t i = 0; i < n; ++i) token(p.name.c_str(), begin, end);
+            for (uint64_t i = 0; i < n; ++i) read(p.type, p.name.c_str());
         } else {
             uint64_t bytes = n * ply_type_size(p.type);
             if (bytes > remaining()) fail_ended();
@@ -240,6 +250,31 @@ class ply_data {
     }
 
   private:
+    // Whether `value` (a whole number for integer types) is one type t holds; a float must be
+    // finite as a float, not only as the double it was parsed into.
+    static bool fits(ply_type t, double value) {
+        switch (t) {
+        case ply_type::int8: return value >= -128 && value <= 127;
+        case ply_type::uint8: return value >= 0 && value <= 255;
+        case ply_type::int16: return value >= -32768 && value <= 32767;
+        case ply_type::uint16: return value >= 0 && value <= 65535;
+        case ply_type::int32: return value >= -2147483648.0 && value <= 2147483647.0;
+        case ply_type::uint32: return value >= 0 && value <= 4294967295.0;
+        case ply_type::float32: return std::fabs(value) <= double(std::numeric_limits<float>::max());
+        case ply_type::float64: return std::isfinite(value);
+        }
+        return false;
+    }
+    static const char* ply_type_name(ply_type t) {
+        static const char* names[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double"};
+        return names[int(t)];
+    }
+    static const char* ply_type_range(ply_type t) {
+        static const char* ranges[] = {"-128 to 127", "0 to 255", "-32768 to 32767", "0 to 65535",
+                                       "-2147483648 to 2147483647", "0 to 4294967295", "finite, at most 3.4e38",
+                                       "finite"};
+        return ranges[int(t)];
+    }
     static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
     void skip_blanks() {
         while (pos_ < text_.size() && is_space(text_[pos_]) && text_[pos_] != '\n') ++pos_;
@@ -277,6 +312,14 @@ inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::sha
     using detail::ply_property;
     using detail::ply_type;
     const std::string text = read_file(path, "PLY file");
+    // A NUL byte has no place in the header, nor anywhere in an ASCII file (found below, once the
+    // format is known); it would hide the rest of a token from the number parsers.
+    auto refuse_nul = [&](size_t end) {
+        size_t nul = text.find('\0');
+        if (nul < end)
+            throw scene_error(path + ":" + std::to_string(line_index(text).line_of(nul)) +
+                              ": a NUL byte in PLY text (is this a binary or damaged file?)");
+    };
 
     // --- header: lines up to end_header ---
     auto not_ply = [&] { return scene_error(path + ": not a PLY file (it does not start with a 'ply' line)"); };
@@ -341,6 +384,7 @@ inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::sha
         }
     }
     if (!have_format) throw scene_error(path + ": malformed PLY header: no 'format' line");
+    refuse_nul(enc == detail::ply_data::encoding::ascii ? text.size() : lines.offset());
 
     // --- what the mesh needs from the header ---
     const ply_element *vertex_el = nullptr, *face_el = nullptr;
@@ -503,6 +547,23 @@ inline void write_ply(const std::string& path, const triangle_mesh& mesh, bool b
     }
     if (vertices.size() > 0x7FFFFFFFu)
         throw scene_error("cannot write '" + path + "': too many vertices for 32-bit PLY indices");
+    // The file stores floats: a value beyond float's range would be written as inf (and NaN as
+    // nan), which no reader, this one included, accepts back.
+    auto check_float = [&](double x, const char* what, size_t index) {
+        if (!(std::fabs(x) <= double(std::numeric_limits<float>::max()))) {
+            std::ostringstream value;
+            value << x;
+            throw scene_error("cannot write '" + path + "': " + what + " " + std::to_string(index) + " has the value " +
+                              value.str() + ", which a PLY float cannot hold (finite, at most 3.4e38)");
+        }
+    };
+    for (const auto& v : vertices) {
+        for (int k = 0; k < 3; ++k) check_float(mesh.positions[v[0]][k], "position", v[0]);
+        if (normals)
+            for (int k = 0; k < 3; ++k) check_float(mesh.normals[v[1]][k], "normal", v[1]);
+        if (uvs)
+            for (size_t k = 0; k < 2; ++k) check_float(mesh.uvs[v[2]][k], "texture coordinate", v[2]);
+    }
 
     std::string out = "ply\nformat ";
     out += binary ? "binary_little_endian 1.0\n" : "ascii 1.0\n";

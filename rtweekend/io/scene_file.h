@@ -68,9 +68,11 @@
 #include "../texture.h"
 #include "../transform.h"
 #include "../triangle.h"
+#include "input_limits.h"
 #include "obj.h"
 #include "ply.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -95,7 +97,14 @@ struct scene_description {
 // Reads a scene from a stream; `name` is the file name used in error messages.
 scene_description parse_scene(std::istream& in, const std::string& name);
 
-// Reads a scene file.
+// Throws scene_error unless the image `cam` would render is within max_image_pixels
+// (io/input_limits.h): "the image is WxH = N pixels, more than the limit of ...". A side beyond
+// 65536 pixels, or an aspect ratio that is not positive, is left to the camera's own check.
+void check_camera_image_size(const camera& cam);
+
+// Reads a scene file. Besides parse_scene's checks, refuses a file that is empty (or only
+// comments) or that places no object in the world: either would render nothing but the sky. And
+// refuses an image larger than max_image_pixels (io/input_limits.h), before anything is allocated.
 scene_description load_scene(const std::string& path);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
@@ -127,19 +136,21 @@ class scene_line {
         errno = 0;
         char* end = nullptr;
         double v = std::strtod(s.c_str(), &end);
-        if (end == s.c_str() || *end != '\0') fail(std::string(what) + ": '" + s + "' is not a number");
+        // The whole token, not a prefix: strtod stops at a NUL byte inside it.
+        if (end == s.c_str() || end != s.c_str() + s.size()) fail(std::string(what) + ": '" + s + "' is not a number");
         if (!std::isfinite(v) || errno == ERANGE) fail(std::string(what) + ": '" + s + "' is not a finite number");
         return v;
     }
 
-    int integer(size_t i, const char* what, long min) const {
+    int integer(size_t i, const char* what, long min, long max = 1 << 30) const {
         const std::string& s = tokens_.at(i);
         errno = 0;
         char* end = nullptr;
         long v = std::strtol(s.c_str(), &end, 10);
-        if (end == s.c_str() || *end != '\0') fail(std::string(what) + ": '" + s + "' is not an integer");
-        if (errno == ERANGE || v < min || v > 1 << 30)
-            fail(std::string(what) + ": " + s + " is out of range (at least " + std::to_string(min) + ")");
+        if (end == s.c_str() || end != s.c_str() + s.size()) fail(std::string(what) + ": '" + s + "' is not an integer");
+        if (errno == ERANGE || v < min || v > max)
+            fail(std::string(what) + ": " + s + " is out of range (at least " + std::to_string(min) + ", at most " +
+                 std::to_string(max) + ")");
         return static_cast<int>(v);
     }
 
@@ -179,8 +190,9 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
         line.expect_count(3, "camera " + key + " <integer>");
         if (key == "image_width") cam.image_width = line.integer(2, "image_width", 1);
         else if (key == "image_height") cam.image_height = line.integer(2, "image_height", 1);
-        else if (key == "samples_per_pixel") cam.samples_per_pixel = line.integer(2, "samples_per_pixel", 1);
-        else if (key == "max_depth") cam.max_depth = line.integer(2, "max_depth", 1);
+        // The same limits as render's --spp and --depth (apps/app_options.h).
+        else if (key == "samples_per_pixel") cam.samples_per_pixel = line.integer(2, "samples_per_pixel", 1, 1 << 24);
+        else if (key == "max_depth") cam.max_depth = line.integer(2, "max_depth", 1, 1 << 16);
         else if (key == "seed") cam.seed = static_cast<uint64_t>(line.integer(2, "seed", 0));
         else if (key == "adaptive_min_samples") cam.adaptive_min_samples = line.integer(2, "adaptive_min_samples", 2);
         else line.fail("unknown camera key '" + key + "'");
@@ -533,6 +545,10 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
     int number = 0;
     while (std::getline(in, text)) {
         ++number;
+        // A text format holds no NUL bytes; one means a binary or damaged file, and would hide
+        // the rest of a token from the number parsers.
+        if (text.find('\0') != std::string::npos)
+            throw scene_error(name + ":" + std::to_string(number) + ": a NUL byte (is this a binary or damaged file?)");
         auto hash = text.find('#');
         if (hash != std::string::npos) text.erase(hash);
         std::istringstream words(text);
@@ -546,9 +562,37 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
     return scene;
 }
 
+inline void check_camera_image_size(const camera& c) {
+    if (c.image_width < 1 || (c.image_height < 1 && !(std::isfinite(c.aspect_ratio) && c.aspect_ratio > 0))) return;
+    // In double, as the camera derives it: a tiny aspect ratio must not overflow an int here.
+    const double h = c.image_height > 0 ? double(c.image_height) : std::max(1.0, std::floor(c.image_width / c.aspect_ratio));
+    if (c.image_width <= 65536 && h <= 65536)
+        check_image_size(uint64_t(c.image_width), uint64_t(h), "the image (camera image_width, image_height, aspect_ratio)");
+}
+
 inline scene_description load_scene(const std::string& path) {
-    std::istringstream in(read_file(path, "scene file"));
-    return parse_scene(in, path);
+    const std::string text = read_file(path, "scene file");
+    std::istringstream in(text);
+    scene_description scene = parse_scene(in, path);
+    if (scene.world.objects.empty()) {
+        // Only comments and blank lines, or directives that placed nothing in the world.
+        bool has_directive = false;
+        std::istringstream lines(text);
+        for (std::string line, word; !has_directive && std::getline(lines, line);) {
+            line.erase(std::min(line.find('#'), line.size()));
+            has_directive = bool(std::istringstream(line) >> word);
+        }
+        throw scene_error(path + (has_directive ? ": the scene has no objects (a group's shapes count only where "
+                                                  "an instance places them): it would render only the background"
+                                                : ": scene file is empty (no directives)"));
+    }
+    // The image is allocated at render time; its size is known now.
+    try {
+        check_camera_image_size(scene.cam);
+    } catch (const scene_error& e) {
+        throw scene_error(path + ": " + e.what());
+    }
+    return scene;
 }
 
 } // namespace rt

@@ -40,8 +40,11 @@
 // finite number (or a whole number where one is needed) or has too few or too many numbers, a
 // negative colour, a non-positive radius, resolution, near distance or refraction index, a
 // degenerate camera (zero gaze, up parallel to gaze, empty image plane, FovY outside (0, 180)),
-// a material or vertex id that does not exist (after vertexOffset), a <Faces> list that is
-// empty or not a multiple of 3, and any problem of a PLY file (its own message follows).
+// a material or vertex id that does not exist (after vertexOffset; an id plus vertexOffset beyond
+// a 64-bit integer), a <Faces> list that is empty or not a multiple of 3, an <ImageResolution> of
+// more than 2^28 pixels (io/input_limits.h), an <ImageName> that is absolute or has a '..'
+// component (image_name_problem below), a NUL byte anywhere in the file, and any problem of a PLY
+// file (its own message follows).
 //
 // The XML is parsed by pugixml (Debian's libpugixml-dev), which the rtweekend CMake target links.
 
@@ -52,6 +55,7 @@
 #include "../whitted_material.h"
 #include "../whitted_scene.h"
 #include "file.h"
+#include "input_limits.h"
 #include "ply.h"
 #include "text_lines.h"
 
@@ -61,6 +65,7 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -76,6 +81,11 @@ namespace rt {
 // Reads a CENG795 XML scene. Throws scene_error (see above).
 whitted_scene load_xml_scene(const std::string& path);
 
+// What is wrong with a camera's ImageName as a file name inside the output directory, "" if
+// nothing: it must be a relative path without a ".." component (and not empty), so that the image
+// lands inside the directory the user chose (render -o DIR), never beside or above it.
+std::string image_name_problem(const std::string& image_name);
+
 // Gives `mesh` area-weighted vertex normals and turns on smooth shading: each vertex's normal is
 // the normalised sum of the (unnormalised, so area-weighted) cross products (b - a) x (c - a) of
 // the faces that use it. A vertex whose sum vanishes takes the normal of its largest face; one
@@ -83,6 +93,22 @@ whitted_scene load_xml_scene(const std::string& path);
 void set_smooth_normals(triangle_mesh& mesh);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+inline std::string image_name_problem(const std::string& image_name) {
+    if (image_name.empty()) return "is empty";
+    // '/' and '\\' both count as separators, so that a name means the same on every system.
+    const std::filesystem::path p(image_name);
+    if (p.is_absolute() || p.has_root_name() || image_name[0] == '/' || image_name[0] == '\\')
+        return "is an absolute path: it must name a file inside the output directory";
+    for (size_t start = 0; start <= image_name.size();) {
+        size_t end = image_name.find_first_of("/\\", start);
+        if (end == std::string::npos) end = image_name.size();
+        if (end - start == 2 && image_name.compare(start, 2, "..") == 0)
+            return "has a '..' component: it must name a file inside the output directory";
+        start = end + 1;
+    }
+    return {};
+}
 
 inline void set_smooth_normals(triangle_mesh& mesh) {
     const size_t n = mesh.positions.size();
@@ -121,6 +147,10 @@ class xml_scene_reader {
     }
 
     whitted_scene read() {
+        // pugixml would end a text at a NUL byte and read "0.5\0junk" as 0.5; a text file has none.
+        if (size_t nul = text_.find('\0'); nul != std::string::npos)
+            throw scene_error(path_ + ":" + std::to_string(line_at(ptrdiff_t(nul))) +
+                              ": a NUL byte (is this a binary or damaged file?)");
         pugi::xml_parse_result parsed = doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default);
         if (!parsed)
             throw scene_error(path_ + ":" + std::to_string(line_at(parsed.offset)) +
@@ -381,11 +411,18 @@ class xml_scene_reader {
                 if (wh[0] <= 0 || wh[1] <= 0 || wh[0] > 1000000 || wh[1] > 1000000)
                     fail(res, owner, "<ImageResolution> " + std::to_string(wh[0]) + " " + std::to_string(wh[1]) +
                                          ": width and height must be between 1 and 1000000");
+                if (uint64_t(wh[0]) * uint64_t(wh[1]) > max_image_pixels)
+                    fail(res, owner, "<ImageResolution> " + std::to_string(wh[0]) + " " + std::to_string(wh[1]) + " is " +
+                                         std::to_string(uint64_t(wh[0]) * uint64_t(wh[1])) +
+                                         " pixels, more than the limit of " + std::to_string(max_image_pixels) +
+                                         " (2^28) pixels");
                 cam.width = int(wh[0]);
                 cam.height = int(wh[1]);
                 node name = child(c, "ImageName", true);
                 cam.image_name = trim(text(name, owner));
                 if (cam.image_name.empty()) fail(name, owner, "<ImageName> is empty");
+                std::string unsafe = image_name_problem(cam.image_name);
+                if (!unsafe.empty()) fail(name, owner, "<ImageName> '" + cam.image_name + "' " + unsafe);
                 if (type.empty()) {
                     node gaze = child(c, "Gaze", true);
                     cam.gaze = triple(gaze, owner);
@@ -451,15 +488,15 @@ class xml_scene_reader {
 
     // The 0-based index of vertex id `id` (as the file gives it, `offset` already added).
     uint32_t vertex_index(long long id, node at, const std::string& owner, const std::string& what) const {
-        long long index = zero_based_ ? id : id - 1;
-        if (index < 0 || index >= (long long)vertices_.size()) {
-            long long first = zero_based_ ? 0 : 1;
+        // Compared before subtracting: id - 1 would overflow for the smallest long long.
+        const long long first = zero_based_ ? 0 : 1;
+        if (id < first || id - first >= (long long)vertices_.size()) {
             std::string has = vertices_.empty() ? "the file has no <VertexData>"
                                                 : "the file defines vertices " + std::to_string(first) + "-" +
                                                       std::to_string(first + (long long)vertices_.size() - 1);
             fail(at, owner, what + " does not exist (" + has + ")");
         }
-        return uint32_t(index);
+        return uint32_t(id - first);
     }
 
     void read_objects(node root, whitted_scene& scene) {
@@ -540,11 +577,17 @@ class xml_scene_reader {
                 std::array<uint32_t, 3> f;
                 for (size_t k = 0; k < 3; ++k) {
                     long long id = ids[i + k];
+                    // id + offset in 64 bits, checked: both come from the file and may be anything
+                    // a long long holds, and signed overflow is undefined behaviour.
+                    const bool overflows = offset > 0 ? id > LLONG_MAX - offset : id < LLONG_MIN - offset;
+                    const long long shifted = overflows ? 0 : id + offset;
                     std::string what = "<Faces> vertex " + std::to_string(id);
                     if (offset != 0)
-                        what += " + vertexOffset " + std::to_string(offset) + " = " + std::to_string(id + offset);
+                        what += " + vertexOffset " + std::to_string(offset) +
+                                (overflows ? " overflows a 64-bit integer" : " = " + std::to_string(shifted));
                     what += " (triangle " + std::to_string(i / 3 + 1) + ")";
-                    uint32_t v = vertex_index(id + offset, faces, owner, what);
+                    if (overflows) fail(faces, owner, what);
+                    uint32_t v = vertex_index(shifted, faces, owner, what);
                     if (remap[v] == triangle_mesh::no_index) {
                         remap[v] = uint32_t(used.size());
                         used.push_back(v);
@@ -584,6 +627,7 @@ inline whitted_scene load_xml_scene(const std::string& path) {
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::image_name_problem;
 using rt::load_xml_scene;
 using rt::set_smooth_normals;
 #endif
