@@ -19,6 +19,7 @@
 #include "engine/vec3f.h"
 #include "hittable.h"
 #include "io/image_write.h"
+#include "io/input_limits.h"
 #include "point_light.h"
 #include "scene_error.h"
 #include "vec3.h"
@@ -210,6 +211,11 @@ class camera {
                 "aspect_ratio must be positive and finite, got " + std::to_string(aspect_ratio));
         require(image_height > 0 || image_width / aspect_ratio <= max_size, "aspect_ratio gives an image taller than " +
                                                                                 std::to_string(max_size) + " pixels");
+        // Each side may be 65536, but not both: the framebuffer is checked before it is allocated.
+        const uint64_t rows = uint64_t(height());
+        require(uint64_t(image_width) * rows <= max_image_pixels,
+                "the image is " + std::to_string(image_width) + "x" + std::to_string(rows) +
+                    " pixels, more than the limit of 268435456 (2^28)");
         require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
                 "vfov must be between 0 and 180 degrees (exclusive), got " + std::to_string(vfov));
         require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");

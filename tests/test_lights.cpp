@@ -172,6 +172,12 @@ TEST_CASE("furnace with an emitter: a closed room converges to a Le s / (1 - a (
         cam.max_depth = 200; // a^200: no light lost to the bounce limit
         check_mean(test::render_checked(cam, world).img, expected, estimator_name(e));
     }
+    // Every sampler: long paths draw from many dimensions (roulette, lights, directions).
+    for (sampler_kind k : {sampler_kind::independent, sampler_kind::stratified}) {
+        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, 64, path_estimator::nee, k);
+        cam.max_depth = 200;
+        check_mean(test::render_checked(cam, world).img, expected, sampler_name(k));
+    }
 }
 
 // The three estimators on the book-3 Cornell box: the same image, pixel by pixel, within the

@@ -157,12 +157,16 @@ TEST_CASE("parse_scene: comments, blank lines, inline comments and CRLF are igno
                                 "sphere 0 0 -1 0.5 metal 0.8 0.6 0.2 0.25 0 # a metal ball\r\n"
                                 "camera image_width 64\r\n"
                                 "camera seed 17\n"
+                                "camera sampler stratified\n"
+                                "camera estimator mixture\n"
                                 "camera background 0.1 0.2 0.3\n");
     REQUIRE(s.world.objects.size() == 1);
     CHECK(s.cam.lookfrom.z() == 3);
     CHECK(s.cam.vfov == 45);
     CHECK(s.cam.image_width == 64);
     CHECK(s.cam.seed == 17);
+    CHECK(s.cam.sampler == sampler_kind::stratified);
+    CHECK(s.cam.estimator == path_estimator::mixture);
     REQUIRE(s.cam.background.has_value());
     CHECK(s.cam.background->y() == 0.2);
     const sphere& sp = sphere_at(s, 0);
@@ -239,6 +243,8 @@ TEST_CASE("parse_scene: every malformed line is 'name:LINE: problem'") {
     check_fails("camera max_depth -3\n", 1, {"max_depth", "out of range"});
     check_fails("camera seed -1\n", 1, {"seed", "out of range"});
     check_fails("camera background 0.1 -0.2 0.3\n", 1, {"background", "non-negative"});
+    check_fails("camera sampler halton\n", 1, {"sampler", "'halton'"});
+    check_fails("camera estimator\n", 1, {"camera estimator"});
 
     // The error names the right line when it comes after valid content.
     check_fails(good_sphere + "\n" + good_sphere + "\n# c\n" + "sphere 0 0 -1 0.5 velvet 0.1 0.2 0.5 0 0\n", 4,

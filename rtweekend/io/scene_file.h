@@ -9,7 +9,8 @@
 //                                defocus_angle_deg d | focus_dist d | aspect_ratio r |
 //                                image_width n | image_height n | samples_per_pixel n |
 //                                max_depth n | background r g b | seed n |
-//                                adaptive_error e | adaptive_min_samples n
+//                                adaptive_error e | adaptive_min_samples n |
+//                                estimator nee|bsdf|mixture | sampler sobol|stratified|independent
 //   background r g b             the same as camera background r g b
 //   texture NAME solid r g b     a named texture, used where a colour may vary as @NAME:
 //   texture NAME checker S <c> <c>      book 2's 3-D checker of cell size S; <c> is r g b or @NAME
@@ -182,7 +183,15 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
     else if (key == "focus_dist") cam.focus_dist = one("focus_dist");
     else if (key == "aspect_ratio") cam.aspect_ratio = one("aspect_ratio");
     else if (key == "adaptive_error") cam.adaptive_error = one("adaptive_error");
-    else if (key == "background") {
+    else if (key == "estimator") {
+        line.expect_count(3, "camera estimator nee|bsdf|mixture");
+        if (!parse_estimator(line.word(2), cam.estimator))
+            line.fail("estimator must be nee, bsdf or mixture, got '" + line.word(2) + "'");
+    } else if (key == "sampler") {
+        line.expect_count(3, "camera sampler sobol|stratified|independent");
+        if (!parse_sampler(line.word(2), cam.sampler))
+            line.fail("sampler must be sobol, stratified or independent, got '" + line.word(2) + "'");
+    } else if (key == "background") {
         color bg = three("background");
         if (bg.x() < 0 || bg.y() < 0 || bg.z() < 0) line.fail("background must be non-negative");
         cam.background = bg;
