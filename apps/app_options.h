@@ -89,7 +89,7 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "  --sampler S  where each sample's random numbers come from: sobol (Owen-scrambled Sobol\n"
                  "               in Morton order, error spread as blue noise; default), stratified\n"
                  "               (jittered) or independent (plain random numbers)\n"
-                 "  -o FILE      write FILE (.ppm, .png, .bmp or .pfm); default: P3 PPM on stdout\n"
+                 "  -o FILE      write FILE (.ppm, .png, .bmp, or linear .pfm or .exr); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
                  d.name, d.operands[0] ? " " : "", d.operands, d.summary);

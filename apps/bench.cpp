@@ -17,7 +17,7 @@
 //       renders N spheres written as user hittables (a book-style class, not the built-in
 //       sphere) on a grid, once with bounding_box() (they go into the BVH) and once without (each
 //       ray tests every one), interleaved; prints the medians and their ratio
-//   bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]
+//   bench --error REF.pfm|REF.exr --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]
 //         [--plot F.svg] [--book-seconds S --book-rmse8 E]
 //       renders at 1, 2, 4, ... N samples per pixel (and, with --adaptive, with adaptive
 //       sampling at halving error targets), and records wall time, rays and the error against
@@ -71,7 +71,7 @@ const app::description bench_description{"bench", "Measures rendering and ray tr
                  "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                  "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
                  "       bench --user-shapes N [--threads N] [--runs N]\n"
-                 "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]\n"
+                 "       bench --error REF.pfm|REF.exr --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N] [--csv F]\n"
                  "             [--plot F.svg] [--book-seconds S --book-rmse8 E] [--estimators E,E,...] [--samplers S,S,...]\n");
     std::exit(2);
 }
@@ -119,7 +119,7 @@ bench_options parse(int argc, char** argv) {
                         "       bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                         "       bench --scaling [--mesh FILE.obj] [--levels N] [--size N] [--runs N]\n"
                         "       bench --user-shapes N [--threads N] [--runs N]\n"
-                        "       bench --error REF.pfm --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N]\n"
+                        "       bench --error REF.pfm|REF.exr --scene FILE [--width N] [--max-spp N] [--adaptive] [--threads N] [--runs N]\n"
                         "             [--csv F] [--plot F.svg] [--book-seconds S --book-rmse8 E] [--estimators E,...] [--samplers S,...]\n"
                         "Medians of --runs runs (default 5; 1 for --error); one thread unless --threads (0 = all cores;\n"
                         "--error: all cores unless --threads).\n");
@@ -486,7 +486,7 @@ std::optional<double> interpolate_loglog(const std::vector<double>& xs, const st
 void bench_error(const bench_options& o) {
     rt::loaded_image ref = rt::read_image(o.error_ref);
     if (ref.display_encoded)
-        throw rt::scene_error(o.error_ref + ": the reference must be a linear image (PFM), not an 8-bit one");
+        throw rt::scene_error(o.error_ref + ": the reference must be a linear image (PFM or EXR), not an 8-bit one");
     rt::scene_description s = rt::load_scene(o.scene);
     s.cam.threads = o.threads_given ? o.threads : 0;
     s.cam.quiet = true;

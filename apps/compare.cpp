@@ -1,6 +1,6 @@
 // compare: how far an image is from a reference (metrics: rtweekend/measure/metrics.h).
 //
-//   compare render.pfm reference.pfm     linear and 8-bit metrics
+//   compare render.pfm reference.pfm     linear and 8-bit metrics (.exr works as .pfm does)
 //   compare render.png reference.pfm     8-bit metrics (the PFM is encoded as our writers do)
 //
 // stdout starts with one machine-readable line per comparison,
@@ -27,10 +27,11 @@ void print_usage(std::FILE* to) {
     std::fprintf(to,
                  "usage: compare IMAGE REFERENCE [--help]\n"
                  "%s\n"
-                 "  IMAGE, REFERENCE  PPM (P3 or P6), PFM, PNG or BMP files of the same size\n"
+                 "  IMAGE, REFERENCE  PPM (P3 or P6), PFM, EXR, PNG or BMP files of the same size\n"
                  "  --help            show this help\n"
-                 "Two PFM files give linear metrics and 8-bit metrics (both encoded as the writers do,\n"
-                 "gamma 2); if either file is 8-bit, the linear one is encoded and the metrics are 8-bit.\n"
+                 "Two linear files (PFM or EXR) give linear metrics and 8-bit metrics (both encoded as the\n"
+                 "writers do, gamma 2); if either file is 8-bit, the linear one is encoded and the metrics\n"
+                 "are 8-bit.\n"
                  "RMSE and bias are in the images' units (radiance or 8-bit codes); relMSE divides by\n"
                  "ref^2 + 0.01 on values scaled to white = 1; PSNR's peak is 1 (linear) or 255 (8-bit).\n",
                  d.summary);
@@ -110,7 +111,7 @@ int main(int argc, char** argv) {
         print_readable_line("8-bit", c.display);
         const char* how = c.linear                                   ? "both encoded as the writers do (gamma 2)"
                           : a.display_encoded && ref.display_encoded ? "the stored codes"
-                                                                     : "the PFM encoded as the writers do (gamma 2)";
+                                                                     : "the linear image encoded as the writers do (gamma 2)";
         std::printf("  (PSNR peak: 1 linear, 255 8-bit; 8-bit compares %s)\n", how);
         if (c.linear) print_nonfinite_note(*c.linear, true);
         print_nonfinite_note(c.display, false);

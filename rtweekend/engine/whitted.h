@@ -149,7 +149,8 @@ whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, c
 // The course's 8-bit encoding: each channel clamped to [0, 255] and truncated (NaN gives 0).
 std::vector<unsigned char> encode_whitted_8bit(const image& img);
 
-// Writes the image as .png or .ppm (P3) in that encoding, or .pfm with the raw radiance; atomically.
+// Writes the image as .png or .ppm (P3) in that encoding, or .pfm or .exr with the raw radiance;
+// atomically.
 void write_whitted_image(const std::string& path, const image& img);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
@@ -392,9 +393,10 @@ inline std::vector<unsigned char> encode_whitted_8bit(const image& img) {
 
 inline void write_whitted_image(const std::string& path, const image& img) {
     if (img.empty()) throw scene_error("cannot write '" + path + "': the image is empty");
-    std::string contents = detail::image_format(path) == ".pfm"
-                               ? detail::encode_pfm(img)
-                               : encode_8bit_image(path, img.width(), img.height(), encode_whitted_8bit(img));
+    const std::string ext = detail::image_format(path);
+    std::string contents = ext == ".pfm"   ? detail::encode_pfm(img)
+                           : ext == ".exr" ? encode_exr(img, path)
+                                           : encode_8bit_image(path, img.width(), img.height(), encode_whitted_8bit(img));
     write_file_atomically(path, contents);
 }
 

@@ -3,12 +3,14 @@
 //
 //   read_image(path)            PPM (P3 and P6, maxval 1..65535, '#' comments in the header),
 //                               PFM ('PF' colour and 'Pf' grey, either byte order), PNG and BMP
-//                               (through stb_image). The format is recognised by the file's first
+//                               (through stb_image), OpenEXR (through the OpenEXR library, when
+//                               the build has it: exr.h). The format is recognised by the file's first
 //                               bytes, not by its name. Throws scene_error naming the path.
 //   decode_image(bytes, name)   the same, from bytes in memory; `name` goes in the messages.
 //
 // What comes back is what the file stores, and whether that is display-encoded:
-//   - PFM holds linear radiance: `pixels` are its floats, display_encoded = false.
+//   - PFM and EXR hold linear radiance: `pixels` are their values as float (EXR half and uint
+//     channels converted exactly), display_encoded = false.
 //   - PPM, PNG and BMP hold display-encoded values (our writers apply gamma 2 and the book's
 //     8-bit quantisation): `pixels` are the stored codes on the 8-bit scale 0..255, as floats,
 //     display_encoded = true. A PPM with maxval M other than 255 is put on that scale as
@@ -28,6 +30,7 @@
 
 #include "../engine/image.h"
 #include "../scene_error.h"
+#include "exr.h"
 #include "file.h"
 
 #include <cerrno>
@@ -46,7 +49,7 @@ namespace rt {
 struct loaded_image {
     image pixels;                  // linear radiance, or codes on the 8-bit scale 0..255
     bool display_encoded = false;  // true for PPM, PNG and BMP files
-    std::string format;            // "PPM P3", "PPM P6", "PFM", "PNG" or "BMP", for messages
+    std::string format;            // "PPM P3", "PPM P6", "PFM", "EXR", "PNG" or "BMP", for messages
 };
 
 loaded_image read_image(const std::string& path);
@@ -318,7 +321,8 @@ inline loaded_image decode_image(const std::string& bytes, const std::string& na
     if (starts_with("PF", 2) || starts_with("Pf", 2)) return detail::decode_pfm(bytes, name);
     if (starts_with("\x89PNG\r\n\x1a\n", 8)) return detail::decode_png(bytes, name);
     if (starts_with("BM", 2)) return detail::decode_bmp(bytes, name);
-    detail::read_error(name, "not a PPM (P3/P6), PFM, PNG or BMP file");
+    if (starts_with("\x76\x2f\x31\x01", 4)) return loaded_image{decode_exr(bytes, name), false, "EXR"};
+    detail::read_error(name, "not a PPM (P3/P6), PFM, EXR, PNG or BMP file");
 }
 
 inline loaded_image read_image(const std::string& path) {

@@ -2,7 +2,8 @@
 // Writing images: the framebuffer (engine/image.h) to files.
 //
 //   write_image(path, img)     format by extension: .ppm (P3, the book's exact layout), .png and
-//                              .bmp (8-bit, via stb_image_write), .pfm (linear float). Writes a
+//                              .bmp (8-bit, via stb_image_write), .pfm and .exr (linear float;
+//                              EXR through OpenEXR when the build has it, see exr.h). Writes a
 //                              temporary file beside the target and renames it, so a reader
 //                              never sees half an image. Throws scene_error naming the path.
 //   check_output_path(path)    throws now if write_image(path, ...) could not succeed later.
@@ -15,6 +16,7 @@
 #include "../color.h"
 #include "../engine/image.h"
 #include "../scene_error.h"
+#include "exr.h"
 #include "file.h"
 
 #include <algorithm>
@@ -99,9 +101,11 @@ inline std::string encode_pfm(const image& img) {
 // The extension of `path` if write_image knows it; throws scene_error otherwise.
 inline std::string image_format(const std::string& path) {
     std::string ext = lowercase_extension(path);
-    if (ext != ".ppm" && ext != ".png" && ext != ".bmp" && ext != ".pfm")
+    if (ext != ".ppm" && ext != ".png" && ext != ".bmp" && ext != ".pfm" && ext != ".exr")
         throw scene_error("cannot write '" + path + "': unknown image format '" + ext +
-                          "' (use .ppm, .png, .bmp or .pfm)");
+                          "' (use .ppm, .png, .bmp, .pfm or .exr)");
+    // Refused here, not after the render: check_output_path comes through this function.
+    if (ext == ".exr" && !exr_supported) throw scene_error("cannot write '" + path + "': " + exr_not_built_text());
     return ext;
 }
 
@@ -115,7 +119,8 @@ inline std::string encode_8bit_image(const std::string& path, int width, int hei
     if (width <= 0 || height <= 0 || bytes.size() != size_t(width) * size_t(height) * 3)
         throw scene_error("cannot write '" + path + "': the image is empty or its size does not match its pixels");
     if (ext == ".ppm") return ppm_text(width, height, bytes);
-    if (ext == ".pfm") throw scene_error("cannot write '" + path + "': 8-bit pixels cannot be written as PFM");
+    if (ext == ".pfm" || ext == ".exr")
+        throw scene_error("cannot write '" + path + "': 8-bit pixels cannot be written as " + (ext == ".pfm" ? "PFM" : "EXR"));
     std::string out;
     int ok = ext == ".png" ? stbi_write_png_to_func(detail::append_bytes, &out, width, height, 3, bytes.data(), width * 3)
                            : stbi_write_bmp_to_func(detail::append_bytes, &out, width, height, 3, bytes.data());
@@ -128,7 +133,9 @@ inline std::string encode_image(const std::string& path, const image& img) {
     if (img.empty())
         throw scene_error("cannot write '" + path + "': the image is empty (" + std::to_string(img.width()) + "x" +
                           std::to_string(img.height()) + ")");
-    if (detail::image_format(path) == ".pfm") return detail::encode_pfm(img);
+    const std::string ext = detail::image_format(path);
+    if (ext == ".pfm") return detail::encode_pfm(img);
+    if (ext == ".exr") return encode_exr(img, path);
     return encode_8bit_image(path, img.width(), img.height(), encode_8bit(img));
 }
 
