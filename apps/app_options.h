@@ -96,7 +96,7 @@ inline void print_usage(const description& d, std::FILE* to) {
     if (d.xml_scenes)
         std::fprintf(to,
                      "For a CENG795 XML scene (.xml), every camera is rendered with the Whitted ray tracer to its\n"
-                     "ImageName (.png or .ppm), only --threads, --quiet and these apply:\n"
+                     "ImageName (.png, .ppm, .pfm or .exr), only --threads, --quiet and these apply:\n"
                      "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
                      "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
                      "  --integrator path\n"
