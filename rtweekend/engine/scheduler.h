@@ -199,13 +199,16 @@ class progress_meter {
         round_ = round;
         round_start_ = clock::now();
         last_pct_ = -1;
+        done_ = 0;
     }
     void show(int64_t done, int64_t total) {
         if (quiet_) return;
+        // The most done so far, even from a call that skips printing: finish() shows it.
+        int64_t seen = done_.load();
+        while (done > seen && !done_.compare_exchange_weak(seen, done)) {}
+        total_ = total;
         std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
         if (!lock.owns_lock()) return;
-        done_ = done;
-        total_ = total;
         const clock::time_point now = clock::now();
         const double since = std::chrono::duration<double>(now - last_line_).count();
         const int pct = int(done * 100 / std::max<int64_t>(1, total));
@@ -219,20 +222,21 @@ class progress_meter {
     void finish() {
         if (quiet_) return;
         std::lock_guard<std::mutex> lock(mutex_);
-        if (total_ > 0) print(clock::now(), true);
+        if (total_.load() > 0) print(clock::now(), true);
     }
 
   private:
     void print(clock::time_point now, bool last) const {
         const double elapsed = std::chrono::duration<double>(now - start_).count();
+        const int64_t done = done_.load(), total = total_.load();
         std::string body;
         if (round_ >= 0) {
             // The time left is the round's: its pace, from its own start.
             body = "round " + std::to_string(round_) + ": " +
-                   format_progress(done_, total_, std::chrono::duration<double>(now - round_start_).count()) +
+                   format_progress(done, total, std::chrono::duration<double>(now - round_start_).count()) +
                    "  (total " + format_duration(elapsed) + ")";
         } else {
-            body = format_progress(done_, total_, elapsed);
+            body = format_progress(done, total, elapsed);
         }
         // On a terminal the padding wipes what a longer earlier line left behind.
         if (interactive_) std::fprintf(stderr, "\rrtweekend: rendering %-60s%s", body.c_str(), last ? "\n" : "");
@@ -242,7 +246,7 @@ class progress_meter {
     bool quiet_, interactive_;
     clock::time_point start_, round_start_, last_line_;
     int round_ = -1, last_pct_ = -1;
-    int64_t done_ = 0, total_ = 0;
+    std::atomic<int64_t> done_{0}, total_{0};
     std::mutex mutex_;
 };
 
