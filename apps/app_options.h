@@ -268,6 +268,9 @@ inline void write_output(const options& o, const rt::image& img) {
 // on stderr how far it got and how many samples the image holds (no image format carries the
 // note: PFM, for one, has no place for comments), and exits with status 130.
 inline void write_output(const options& o, const rt::render_result& r) {
+    // The render is over: Ctrl-C from here on ends the program as usual (the write is atomic, so
+    // it leaves no half-written file).
+    std::signal(SIGINT, SIG_DFL);
     write_output(o, r.img);
     if (!r.stats.interrupted) return;
     const rt::render_stats& s = r.stats;
