@@ -232,14 +232,15 @@ class progress_meter {
         std::string body;
         if (round_ >= 0) {
             // The time left is the round's: its pace, from its own start.
-            body = "round " + std::to_string(round_) + ": " +
+            body = "round " + std::to_string(round_) + ":" +
                    format_progress(done, total, std::chrono::duration<double>(now - round_start_).count()) +
-                   "  (total " + format_duration(elapsed) + ")";
+                   " (total " + format_duration(elapsed) + ")";
         } else {
             body = format_progress(done, total, elapsed);
         }
-        // On a terminal the padding wipes what a longer earlier line left behind.
-        if (interactive_) std::fprintf(stderr, "\rrtweekend: rendering %-60s%s", body.c_str(), last ? "\n" : "");
+        // On a terminal the padding wipes what a longer earlier line left behind; the line stays
+        // within 80 columns (66 with the padding), as one that wraps could not be rewritten by "\r".
+        if (interactive_) std::fprintf(stderr, "\rrtweekend: rendering %-45s%s", body.c_str(), last ? "\n" : "");
         else std::fprintf(stderr, "rtweekend: rendering %s\n", body.c_str());
     }
 
