@@ -41,5 +41,6 @@ int main(int argc, char** argv) {
         opt.apply(cam);
         rt::image img = cam.render_image(world, ray_color);
         app::write_output(opt, img);
+        app::exit_if_interrupted(opt);
     });
 }

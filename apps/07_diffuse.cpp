@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
         cam.max_depth = 50; // bounces followed before a path gives up (and returns black)
 
         opt.apply(cam);
-        rt::image img = cam.render_image(world); // the path tracer
-        app::write_output(opt, img);
+        rt::render_result result = rt::render(cam, world); // the path tracer
+        app::write_output(opt, result);
     });
 }

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
         cam.vup = vec3(0, 1, 0);
 
         opt.apply(cam);
-        rt::image img = cam.render_image(world);
-        app::write_output(opt, img);
+        rt::render_result result = rt::render(cam, world); // the path tracer
+        app::write_output(opt, result);
     });
 }

@@ -17,6 +17,6 @@ int main(int argc, char** argv) {
     return app::run(d, [&] {
         light_scene s = make_cornell_box(true);
         opt.apply(s.cam);
-        app::write_output(opt, rt::render(s.cam, s.world).img);
+        app::write_output(opt, rt::render(s.cam, s.world));
     });
 }

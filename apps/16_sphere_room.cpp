@@ -18,6 +18,6 @@ int main(int argc, char** argv) {
     return app::run(d, [&] {
         light_scene s = make_sphere_room();
         opt.apply(s.cam);
-        app::write_output(opt, rt::render(s.cam, s.world).img);
+        app::write_output(opt, rt::render(s.cam, s.world));
     });
 }

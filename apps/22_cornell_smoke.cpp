@@ -16,6 +16,6 @@ int main(int argc, char** argv) {
     return app::run(d, [&] {
         next_week_scene s = make_cornell_smoke();
         opt.apply(s.cam);
-        app::write_output(opt, rt::render(s.cam, s.world).img);
+        app::write_output(opt, rt::render(s.cam, s.world));
     });
 }

@@ -3,14 +3,23 @@
 //   --width N  --spp N  --depth N  --threads N  --seed N  --adaptive E  -o FILE  --quiet  --help
 // and the way every app ends: the image to FILE (format by extension) or a P3 PPM on stdout,
 // and one "app: error: ..." line with exit status 1 for bad input, 2 for bad usage.
+//
+// Ctrl-C (SIGINT) during a render stops it cleanly: options::apply() points the camera's stop
+// flag at interrupt_requested and installs on_interrupt() for SIGINT; the render returns the mean
+// of the samples each pixel took so far, write_output() writes that image (atomically, like any
+// output), says on stderr what it holds, and the app exits with status 130 (128 + SIGINT, as a
+// shell reports a process killed by it). The handler puts the default one back, so a second
+// Ctrl-C kills at once.
 
 #include <rtweekend/camera.h>
 #include <rtweekend/io/image_write.h>
 #include <rtweekend/scene_error.h>
 
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +30,28 @@
 #include <vector>
 
 namespace app {
+
+// Set by the SIGINT handler, read by the renderer's workers (render_settings::stop). The one
+// mutable global of the project, and necessarily so: a signal handler can reach nothing else. It
+// is a lock-free atomic, which a handler may store to (C++17 [support.signal]).
+inline std::atomic<bool> interrupt_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "a signal handler may only touch lock-free atomics");
+
+// The SIGINT handler: asks the render to stop, and restores the default action so that a second
+// Ctrl-C ends the program at once (signal() on the signal being handled is allowed in a handler).
+extern "C" inline void on_interrupt(int) {
+    interrupt_requested.store(true);
+    std::signal(SIGINT, SIG_DFL);
+}
+
+// Installs on_interrupt() for SIGINT (once; apps render once or a few times in a row).
+inline void catch_interrupts() {
+    static const bool installed = [] {
+        std::signal(SIGINT, on_interrupt);
+        return true;
+    }();
+    (void)installed;
+}
 
 struct options {
     std::optional<int> width, spp, depth, threads;
@@ -33,6 +64,8 @@ struct options {
     std::string output; // empty: PPM on stdout
     bool quiet = false;
     std::vector<std::string> positional;
+    std::string program; // the app's name, for messages
+
 
     // Applies the flags that were given on top of the app's own camera settings.
     void apply(rt::camera& cam) const {
@@ -48,6 +81,9 @@ struct options {
         if (estimator) cam.estimator = *estimator;
         if (sampler) cam.sampler = *sampler;
         cam.quiet = quiet;
+        // Ctrl-C during the render: the image so far (see the top).
+        catch_interrupts();
+        cam.stop = &interrupt_requested;
     }
 };
 
@@ -137,6 +173,7 @@ inline double parse_real(const description& d, const std::string& flag, const st
 
 inline options parse(int argc, char** argv, const description& d) {
     options o;
+    o.program = d.name;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i], value;
         bool has_inline_value = false;
@@ -225,6 +262,44 @@ inline void write_output(const options& o, const rt::image& img) {
     } else {
         rt::write_image(o.output, img);
     }
+}
+
+// Writes a render's image as write_output(o, img) does; if Ctrl-C stopped the render, then says
+// on stderr how far it got and how many samples the image holds (no image format carries the
+// note: PFM, for one, has no place for comments), and exits with status 130.
+inline void write_output(const options& o, const rt::render_result& r) {
+    // The render is over: Ctrl-C from here on ends the program as usual (the write is atomic, so
+    // it leaves no half-written file).
+    std::signal(SIGINT, SIG_DFL);
+    write_output(o, r.img);
+    if (!r.stats.interrupted) return;
+    const rt::render_stats& s = r.stats;
+    const std::string where = o.output.empty() ? "the image to standard output" : o.output;
+    std::string done;
+    char text[160];
+    if (!(o.adaptive.value_or(0) > 0)) { // adaptive sampling does not know its total ahead
+        std::snprintf(text, sizeof text, "after %d %% ", int(s.completed * 100));
+        done = text;
+    }
+    std::snprintf(text, sizeof text, "(average %.1f samples per pixel, %d to %d)", s.mean_pixel_samples(),
+                  s.min_pixel_samples, s.max_pixel_samples);
+    std::string note = done + text;
+    if (s.pixels_without_samples > 0)
+        note += "; " + std::to_string(s.pixels_without_samples) + " pixels took no sample and are black";
+    std::fprintf(stderr, "%s: interrupted %s; wrote %s with the samples taken\n", o.program.c_str(), note.c_str(),
+                 where.c_str());
+    std::fflush(nullptr);
+    std::exit(130);
+}
+
+// After a render that returned its image only (the apps with their own ray_color): the same
+// exit, without the sample counts it cannot know.
+inline void exit_if_interrupted(const options& o) {
+    if (!interrupt_requested.load()) return;
+    std::fprintf(stderr, "%s: interrupted; wrote %s with the samples taken\n", o.program.c_str(),
+                 o.output.empty() ? "the image to standard output" : o.output.c_str());
+    std::fflush(nullptr);
+    std::exit(130);
 }
 
 // Runs an app's body, turning scene_error (and any other failure) into one error line.

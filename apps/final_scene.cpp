@@ -14,6 +14,6 @@ int main(int argc, char** argv) {
         rt::hittable_list world = make_cover_scene();
         rt::camera cam = make_cover_camera();
         opt.apply(cam);
-        app::write_output(opt, cam.render_image(world));
+        app::write_output(opt, rt::render(cam, world));
     });
 }

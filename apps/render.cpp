@@ -17,6 +17,7 @@
 #include <rtweekend/io/xml_scene.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -93,12 +94,21 @@ void render_xml_path_traced(const app::options& opt, const rt::whitted_scene& sc
     settings.adaptive_error = opt.adaptive.value_or(0);
     settings.estimator = opt.estimator.value_or(rt::path_estimator::nee);
     if (opt.sampler) settings.sampler = *opt.sampler;
+    app::catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
+    settings.stop = &app::interrupt_requested;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
     std::vector<rt::point_light> lights = scene.lights;
     for (rt::point_light& l : lights) l.intensity *= rt::pi;
     for (size_t i = 0; i < scene.cameras.size(); ++i) {
         rt::render_result r = rt::path_trace(scene.world, rt::view_camera_frame(scene.cameras[i]), env, settings, lights);
         rt::write_whitted_image(outputs[i], r.img);
+        if (r.stats.interrupted) {
+            std::fprintf(stderr,
+                         "render: interrupted after %d %% of camera %zu (average %.1f samples per pixel); wrote %s "
+                         "with the samples taken\n",
+                         int(r.stats.completed * 100), i + 1, r.stats.mean_pixel_samples(), outputs[i].c_str());
+            std::exit(130);
+        }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
     }
 }
@@ -148,6 +158,6 @@ int main(int argc, char** argv) {
             if (!opt.width) throw;
             throw rt::scene_error("--width " + std::to_string(*opt.width) + ": " + e.what());
         }
-        app::write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights).img);
+        app::write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
     });
 }

@@ -24,6 +24,7 @@
 #include "scene_error.h"
 #include "vec3.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -71,6 +72,9 @@ class camera {
     // Where each sample's random numbers come from (engine/sampler.h): sobol (Owen-scrambled,
     // blue-noise ordered; the default), stratified (jittered) or independent (plain random).
     sampler_kind sampler = sampler_kind::sobol;
+    // Set *stop to true to end the render early with the samples taken so far
+    // (render_settings::stop); the flag belongs to the caller and must outlive the render.
+    const std::atomic<bool>* stop = nullptr;
 
     // Renders the world and writes a P3 PPM to stdout. On invalid input prints one error line
     // to stderr and exits with status 1 (book-style mains have no error handling of their own).
@@ -113,6 +117,7 @@ class camera {
         s.adaptive_min_samples = adaptive_min_samples;
         s.estimator = estimator;
         s.sampler = sampler;
+        s.stop = stop;
         s.check("camera");
         return s;
     }

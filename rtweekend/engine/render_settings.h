@@ -7,6 +7,7 @@
 #include "../scene_error.h"
 #include "sampler.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -54,6 +55,10 @@ struct render_settings {
     int adaptive_min_samples = 16;
     path_estimator estimator = path_estimator::nee; // the path tracer's
     sampler_kind sampler = sampler_kind::sobol;      // where a sample's numbers come from (sampler.h)
+    // Set to true (from any thread, e.g. an app's SIGINT handling) to stop the render early: the
+    // scheduler polls it between pixels and returns the average of the samples taken so far
+    // (render_stats::interrupted). The caller owns the flag; the library installs no signal handler.
+    const std::atomic<bool>* stop = nullptr;
 
     // Throws scene_error "<owner>: <problem>" for a setting that cannot be rendered.
     void check(const std::string& owner = "render settings") const {

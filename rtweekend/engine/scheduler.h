@@ -5,11 +5,20 @@
 //   render_result r = render_samples(width, height, settings,
 //       [&](int x, int y, int s, pcg32& rng, uint64_t& rays) -> vec3f { ... });
 //
-// The image is cut into 16x16 tiles that workers take from an atomic counter (with adaptive
-// sampling: rounds over the whole image, planned by measure/adaptive.h). Sample s of pixel (x, y)
-// draws from its own generator, sample_rng(seed, pixel, s), so the image is bit-identical for any
-// thread count. A sample that comes out NaN or infinite is dropped (it counts as 0) and counted.
-// Progress and a final statistics line go to stderr unless settings.quiet is set.
+// The image is cut into 16x16 tiles that workers take from an atomic counter, in passes over the
+// whole image (with adaptive sampling: rounds planned by measure/adaptive.h). Sample s of pixel
+// (x, y) draws from its own generator, sample_rng(seed, pixel, s), so the image is bit-identical
+// for any thread count. A sample that comes out NaN or infinite is dropped (it counts as 0) and
+// counted. Progress (percentage, elapsed time, time left) and a final statistics line go to
+// stderr unless settings.quiet is set.
+//
+// Interruption (settings.stop): the workers poll the flag before each pixel, so a render stops
+// within one pixel's samples, and the image is the mean of the samples each pixel did take.
+// Uniform sampling runs in passes, 1 sample per pixel, then 1 more, 2, 4, ... (the count doubling)
+// so that a stopped render has spread its samples over the whole image: after the first pass
+// every pixel has at least one, and the counts differ at most by the interrupted pass (a pixel
+// has either n or 2n samples). Each pixel's sum is kept in double across passes and grows in
+// sample order, so an uninterrupted render gives exactly the image of a single pass of spp samples.
 
 #include "../measure/adaptive.h"
 #include "image.h"
@@ -20,6 +29,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -51,8 +61,19 @@ struct render_stats {
     uint64_t samples_saved = 0;     // by adaptive sampling: width * height * spp - samples
     uint64_t nonfinite_samples = 0; // samples that came out NaN or infinite (dropped)
     double seconds = 0;             // wall time of the render, compile included
+    // Stopped early by render_settings::stop: each pixel holds the mean of the samples it took.
+    bool interrupted = false;
+    int min_pixel_samples = 0;       // the fewest samples a pixel took (0: some pixels are black)
+    int max_pixel_samples = 0;       // the most
+    uint64_t pixels_without_samples = 0; // black pixels, only after an early stop
+    // The share of the planned samples taken (uniform sampling; 1 when not interrupted). Adaptive
+    // sampling does not know its total in advance: there it is samples / (pixels * spp), a floor.
+    double completed = 1;
 
     double mrays_per_second() const { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0; }
+    double mean_pixel_samples() const {
+        return width > 0 && height > 0 ? double(samples) / (double(width) * double(height)) : 0;
+    }
 };
 
 struct render_result {
@@ -70,6 +91,14 @@ render_result render_samples(int width, int height, const render_settings& setti
 
 // One-line summary of a render's statistics, as printed at the end of a render.
 std::string stats_line(const render_stats& s);
+
+// A duration as m:ss, or h:mm:ss from an hour on (rounded down to the second).
+std::string format_duration(double seconds);
+
+// The progress line's body: "42%  elapsed 0:12  left 0:16". The time left assumes the remaining
+// work goes at the pace of the work done: elapsed * (total - done) / done; before any work is
+// done it is unknown ("left ?").
+std::string format_progress(int64_t done, int64_t total, double elapsed_seconds);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -153,46 +182,88 @@ vec3f take_sample(uint64_t seed, int width, SampleFn& sample, int x, int y, int 
     return {0, 0, 0};
 }
 
-// Progress on stderr: a terminal gets a counter updated in place, a log every tenth percent.
+// Progress on stderr. On a terminal one line updated in place ("\r"), at most four times a second
+// (more is flicker, and each update is a write). In a log (stderr not a terminal) a full line
+// whenever another 10 % is done or 30 s have passed, but never two lines within 5 s: a short
+// render logs a few lines, a long one a line every 30 s, both readable with tail. Workers call
+// show() once per tile or job; the one that finds the meter busy or the update not due returns at
+// once (try_lock), so the workers never wait on each other here.
 class progress_meter {
   public:
-    explicit progress_meter(bool quiet) : quiet_(quiet), interactive_(stderr_is_terminal()) {
-        if (!quiet_ && !interactive_) std::fprintf(stderr, "rtweekend: rendering");
-    }
-    // Adaptive sampling's rounds: each is counted on its own, and a log gets their numbers only.
+    using clock = std::chrono::steady_clock;
+    explicit progress_meter(bool quiet, clock::time_point start = clock::now())
+        : quiet_(quiet), interactive_(stderr_is_terminal()), start_(start), round_start_(start), last_line_(start) {}
+    // Adaptive sampling's rounds: each is counted on its own (their total is not known ahead).
     void start_round(int round) {
+        std::lock_guard<std::mutex> lock(mutex_);
         round_ = round;
-        shown_ = -1;
-        if (!quiet_ && !interactive_) std::fprintf(stderr, " [round %d]", round);
+        round_start_ = clock::now();
+        last_pct_ = -1;
+        done_ = 0;
     }
     void show(int64_t done, int64_t total) {
-        if (quiet_ || (round_ >= 0 && !interactive_)) return;
-        int step = interactive_ ? 1 : 10;
-        int pct = int(done * 100 / std::max<int64_t>(1, total)) / step * step;
-        int shown = shown_.load();
-        while (pct > shown && !shown_.compare_exchange_weak(shown, pct)) {}
-        if (pct <= shown) return;
-        if (round_ >= 0) std::fprintf(stderr, "\rrtweekend: rendering, round %d: %3d%%", round_, pct);
-        else if (interactive_) std::fprintf(stderr, "\rrtweekend: rendering %3d%%", pct);
-        else std::fprintf(stderr, " %d%%", pct);
+        if (quiet_) return;
+        // The most done so far, even from a call that skips printing: finish() shows it.
+        int64_t seen = done_.load();
+        while (done > seen && !done_.compare_exchange_weak(seen, done)) {}
+        total_ = total;
+        std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+        if (!lock.owns_lock()) return;
+        const clock::time_point now = clock::now();
+        const double since = std::chrono::duration<double>(now - last_line_).count();
+        const int pct = int(done * 100 / std::max<int64_t>(1, total));
+        bool due = interactive_ ? since >= 0.25 : since >= 5 && (pct >= last_pct_ + 10 || since >= 30);
+        if (!due) return;
+        print(now, false);
+        last_line_ = now;
+        last_pct_ = pct;
     }
+    // The last state (100 % unless interrupted), ending the terminal's line.
     void finish() {
-        if (!quiet_) std::fprintf(stderr, "\n");
+        if (quiet_) return;
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (total_.load() > 0) print(clock::now(), true);
     }
 
   private:
+    void print(clock::time_point now, bool last) const {
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        const int64_t done = done_.load(), total = total_.load();
+        std::string body;
+        if (round_ >= 0) {
+            // The time left is the round's: its pace, from its own start.
+            body = "round " + std::to_string(round_) + ":" +
+                   format_progress(done, total, std::chrono::duration<double>(now - round_start_).count()) +
+                   " (total " + format_duration(elapsed) + ")";
+        } else {
+            body = format_progress(done, total, elapsed);
+        }
+        // On a terminal the padding wipes what a longer earlier line left behind; the line stays
+        // within 80 columns (66 with the padding), as one that wraps could not be rewritten by "\r".
+        if (interactive_) std::fprintf(stderr, "\rrtweekend: rendering %-45s%s", body.c_str(), last ? "\n" : "");
+        else std::fprintf(stderr, "rtweekend: rendering %s\n", body.c_str());
+    }
+
     bool quiet_, interactive_;
-    int round_ = -1;
-    std::atomic<int> shown_{0};
+    clock::time_point start_, round_start_, last_line_;
+    int round_ = -1, last_pct_ = -1;
+    std::atomic<int64_t> done_{0}, total_{0};
+    std::mutex mutex_;
 };
+
+inline bool stop_requested(const render_settings& settings) {
+    return settings.stop != nullptr && settings.stop->load(std::memory_order_relaxed);
+}
 
 inline int render_threads(const render_settings& settings, int jobs) {
     int threads = settings.threads > 0 ? settings.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     return std::max(1, std::min(threads, jobs));
 }
 
-inline render_stats make_stats(int width, int height, const render_settings& settings, int threads,
-                               const sample_totals& t, std::chrono::steady_clock::time_point start) {
+// The statistics; `counts(i)` is the number of samples pixel i took.
+template <class Counts>
+render_stats make_stats(int width, int height, const render_settings& settings, int threads, const sample_totals& t,
+                        std::chrono::steady_clock::time_point start, Counts&& counts) {
     render_stats st;
     st.width = width;
     st.height = height;
@@ -200,15 +271,29 @@ inline render_stats make_stats(int width, int height, const render_settings& set
     st.threads = threads;
     st.rays = t.rays;
     st.samples = t.samples;
-    st.samples_saved = uint64_t(width) * uint64_t(height) * uint64_t(settings.samples_per_pixel) - t.samples;
     st.nonfinite_samples = t.nonfinite;
+    const size_t pixels = size_t(width) * size_t(height);
+    const uint64_t planned = uint64_t(pixels) * uint64_t(settings.samples_per_pixel);
+    st.min_pixel_samples = pixels > 0 ? settings.samples_per_pixel : 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        const int n = counts(i);
+        st.min_pixel_samples = std::min(st.min_pixel_samples, n);
+        st.max_pixel_samples = std::max(st.max_pixel_samples, n);
+        if (n == 0) ++st.pixels_without_samples;
+    }
+    st.interrupted = stop_requested(settings) && (settings.adaptive_error > 0 || t.samples < planned);
+    // Samples not taken are saved by adaptive sampling; an interrupted render did not save them.
+    st.samples_saved = st.interrupted ? 0 : planned - t.samples;
+    st.completed = st.interrupted ? double(t.samples) / double(planned) : 1.0;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!settings.quiet) std::fprintf(stderr, "%s\n", stats_line(st).c_str());
     return st;
 }
 
 // Adaptive sampling (the plan and why: measure/adaptive.h): rounds over the whole image, each
-// round's samples taken in parallel, each pixel by one thread in sample order.
+// round's samples taken in parallel, each pixel by one thread in sample order. A stop ends the
+// render between pixels: the pixels of the round not reached keep the samples of earlier rounds
+// (none, if it was round 0).
 template <class SampleFn>
 render_result run_adaptive(int w, int h, const render_settings& settings, SampleFn& sample,
                            std::chrono::steady_clock::time_point start) {
@@ -222,14 +307,15 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
     plan_settings.threads = threads;
     adaptive_sampler plan(plan_settings);
 
-    progress_meter progress(settings.quiet);
+    progress_meter progress(settings.quiet, start);
     sample_totals totals;
-    for (int round = 0; plan.plan_round(); ++round) {
+    for (int round = 0; !stop_requested(settings) && plan.plan_round(); ++round) {
         progress.start_round(round);
         std::atomic<int> jobs_done{0};
         const int jobs = int(plan.job_count());
         sample_totals t = run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
             for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
+                if (stop_requested(settings)) return;
                 int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
                 for (int s = item.first; s < item.first + item.count; ++s) {
                     uint64_t rays_before = mine.rays;
@@ -248,11 +334,14 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
     render_result result;
     result.img = image(w, h);
     plan.write(result.img.data());
-    result.stats = make_stats(w, h, settings, threads, totals, start);
+    result.stats = make_stats(w, h, settings, threads, totals, start, [&](size_t i) { return plan.samples(i); });
     return result;
 }
 
-// Uniform sampling: samples_per_pixel samples in every pixel, 16x16 tiles handed to the workers.
+// Uniform sampling: samples_per_pixel samples in every pixel, in passes over the image (1, 1, 2,
+// 4, ... samples: see the top), each pass cut into 16x16 tiles handed to the workers. The passes
+// wait for each other (a pixel's samples must be summed in order); a pass costs as much as all
+// before it, so the waits at their ends add up to about twice the last pass's.
 template <class SampleFn>
 render_result run_tiles(int w, int h, const render_settings& settings, SampleFn& sample,
                         std::chrono::steady_clock::time_point start) {
@@ -260,32 +349,51 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
     const int spp = settings.samples_per_pixel;
     const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile, tile_count = tiles_x * tiles_y;
     const int threads = render_threads(settings, tile_count);
+    const size_t pixel_count = size_t(w) * size_t(h);
+
+    // Each pixel's running sums (double, as a single pass summed them) and sample count.
+    std::vector<double> sums(pixel_count * 3, 0.0);
+    std::vector<int> counts(pixel_count, 0);
+    progress_meter progress(settings.quiet, start);
+    const int64_t total = int64_t(pixel_count) * spp;
+    std::atomic<int64_t> done{0};
+    sample_totals totals;
+    for (int first = 0; first < spp && !stop_requested(settings);) {
+        const int last = std::min(spp, std::max(1, 2 * first)); // this pass: samples [first, last)
+        sample_totals t = run_jobs(threads, tile_count, [&](int j, sample_totals& mine) {
+            int x0 = (j % tiles_x) * tile, y0 = (j / tiles_x) * tile;
+            int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
+            for (int y = y0; y < y1; ++y) {
+                for (int x = x0; x < x1; ++x) {
+                    if (stop_requested(settings)) return;
+                    const size_t i = size_t(y) * size_t(w) + size_t(x);
+                    double sum[3] = {sums[i * 3], sums[i * 3 + 1], sums[i * 3 + 2]};
+                    for (int s = first; s < last; ++s) {
+                        vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
+                        sum[0] += c.x;
+                        sum[1] += c.y;
+                        sum[2] += c.z;
+                    }
+                    for (int k = 0; k < 3; ++k) sums[i * 3 + size_t(k)] = sum[k];
+                    counts[i] = last;
+                }
+            }
+            progress.show(done += int64_t(x1 - x0) * (y1 - y0) * (last - first), total);
+        });
+        totals.rays += t.rays;
+        totals.samples += t.samples;
+        totals.nonfinite += t.nonfinite;
+        first = last;
+    }
+    progress.finish();
 
     render_result result;
     result.img = image(w, h);
     std::vector<float>& pixels = result.img.data();
-    progress_meter progress(settings.quiet);
-    std::atomic<int> tiles_done{0};
-    sample_totals totals = run_jobs(threads, tile_count, [&](int t, sample_totals& mine) {
-        int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
-        int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                double sum[3] = {0, 0, 0};
-                for (int s = 0; s < spp; ++s) {
-                    vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
-                    sum[0] += c.x;
-                    sum[1] += c.y;
-                    sum[2] += c.z;
-                }
-                float* out = &pixels[(size_t(y) * size_t(w) + size_t(x)) * 3];
-                for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(sum[k] / spp);
-            }
-        }
-        progress.show(++tiles_done, tile_count);
-    });
-    progress.finish();
-    result.stats = make_stats(w, h, settings, threads, totals, start);
+    for (size_t i = 0; i < pixel_count; ++i)
+        for (size_t k = 0; k < 3; ++k)
+            pixels[i * 3 + k] = counts[i] > 0 ? static_cast<float>(sums[i * 3 + k] / counts[i]) : 0.0f;
+    result.stats = make_stats(w, h, settings, threads, totals, start, [&](size_t i) { return counts[i]; });
     return result;
 }
 
@@ -306,6 +414,11 @@ inline std::string stats_line(const render_stats& s) {
                   s.mrays_per_second(), s.threads, s.threads == 1 ? "" : "s",
                   static_cast<unsigned long long>(s.nonfinite_samples));
     std::string text = line;
+    if (s.interrupted) {
+        std::snprintf(line, sizeof line, ", interrupted: %.1f samples per pixel on average (%d to %d)",
+                      s.mean_pixel_samples(), s.min_pixel_samples, s.max_pixel_samples);
+        text += line;
+    }
     if (s.samples_saved > 0) {
         std::snprintf(line, sizeof line, ", adaptive: %.1f spp on average, %.1f %% of samples saved",
                       double(s.samples) / (double(s.width) * s.height),
@@ -315,4 +428,22 @@ inline std::string stats_line(const render_stats& s) {
     return text;
 }
 
+inline std::string format_duration(double seconds) {
+    const long long t = seconds > 0 && std::isfinite(seconds) ? static_cast<long long>(seconds) : 0;
+    char text[64];
+    if (t >= 3600) std::snprintf(text, sizeof text, "%lld:%02lld:%02lld", t / 3600, t / 60 % 60, t % 60);
+    else std::snprintf(text, sizeof text, "%lld:%02lld", t / 60, t % 60);
+    return text;
+}
+
+inline std::string format_progress(int64_t done, int64_t total, double elapsed_seconds) {
+    done = std::max<int64_t>(0, std::min(done, total));
+    const int pct = total > 0 ? int(done * 100 / total) : 0;
+    char text[128];
+    std::snprintf(text, sizeof text, "%3d%%  elapsed %s  left %s", pct, format_duration(elapsed_seconds).c_str(),
+                  done > 0 ? format_duration(elapsed_seconds * double(total - done) / double(done)).c_str() : "?");
+    return text;
+}
+
 } // namespace rt
+

@@ -105,11 +105,17 @@ class adaptive_sampler {
         ++p.n;
     }
 
-    // The mean of each pixel's samples, RGB, row by row.
+    // The mean of each pixel's samples, RGB, row by row. A pixel without samples (only after an
+    // interrupted render) is black: 0/0 would be NaN.
     void write(std::vector<float>& rgb) const {
         for (size_t i = 0; i < pixels_.size(); ++i)
-            for (int k = 0; k < 3; ++k) rgb[i * 3 + size_t(k)] = static_cast<float>(pixels_[i].sum[k] / pixels_[i].n);
+            for (int k = 0; k < 3; ++k)
+                rgb[i * 3 + size_t(k)] = pixels_[i].n > 0 ? static_cast<float>(pixels_[i].sum[k] / pixels_[i].n) : 0.0f;
     }
+
+    // The samples pixel i has taken so far.
+    int samples(size_t i) const { return pixels_[i].n; }
+    size_t pixel_count() const { return pixels_.size(); }
 
   private:
     struct pixel_stats {
