@@ -25,18 +25,7 @@ using namespace rt;
 namespace {
 
 void check_error(const std::string& path, const std::string& problem) {
-    bool threw = false;
-    try {
-        read_image(path);
-    } catch (const scene_error& e) {
-        threw = true;
-        std::string msg = e.what();
-        CAPTURE(msg);
-        CHECK(msg.find('\n') == std::string::npos);
-        CHECK(msg.find(path) != std::string::npos);
-        CHECK(msg.find(problem) != std::string::npos);
-    }
-    CHECK(threw);
+    test::check_one_line_error([&] { read_image(path); }, path, problem);
 }
 
 } // namespace

@@ -88,6 +88,23 @@ inline rt::render_result render_checked(const rt::camera& cam, const rt::hittabl
     return r;
 }
 
+// Expects action() to throw scene_error: one line that names `path` and says `problem`.
+template <class Action>
+void check_one_line_error(Action&& action, const std::string& path, const std::string& problem) {
+    bool threw = false;
+    try {
+        action();
+    } catch (const rt::scene_error& e) {
+        threw = true;
+        std::string msg = e.what();
+        CAPTURE(msg);
+        CHECK(msg.find('\n') == std::string::npos);
+        CHECK(msg.find(path) != std::string::npos);
+        CHECK(msg.find(problem) != std::string::npos);
+    }
+    CHECK(threw);
+}
+
 // Whether two images have the same size and the same bits in every float.
 inline bool same_bits(const rt::image& a, const rt::image& b) {
     return a.width() == b.width() && a.height() == b.height() && a.data().size() == b.data().size() &&
