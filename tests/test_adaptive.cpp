@@ -20,6 +20,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_adaptive {
+
 using namespace rt;
 
 namespace {
@@ -215,3 +217,5 @@ TEST_CASE("adaptive: invalid settings are scene errors") {
     cam.adaptive_min_samples = 1;
     CHECK_THROWS_AS(render(cam, world), scene_error);
 }
+
+} // namespace test_adaptive

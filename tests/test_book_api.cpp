@@ -29,6 +29,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_book_api {
+
 using namespace rt;
 
 namespace {
@@ -825,3 +827,5 @@ TEST_CASE("solid_color: the same colour everywhere, from a colour or three compo
     CHECK(exact_solid_color(&other) == nullptr);
     CHECK(exact_solid_color(nullptr) == nullptr);
 }
+
+} // namespace test_book_api

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+namespace test_conductor_fresnel {
+
 using namespace rt;
 
 namespace {
@@ -610,3 +612,5 @@ TEST_CASE("fresnel: Beer's law through an absorbing slab, multiple internal refl
         }
     }
 }
+
+} // namespace test_conductor_fresnel

@@ -26,6 +26,8 @@
 
 #include <sys/stat.h>
 
+namespace test_fuzz_inputs {
+
 using namespace rt;
 
 namespace {
@@ -285,3 +287,5 @@ TEST_CASE("fuzz: XML NUL bytes and resolutions beyond the pixel limit") {
     check_refused([&] { load_xml_scene(dir.write("big.xml", big)); },
                   {"<ImageResolution> 1000000 1000000 is 1000000000000 pixels, more than the limit of 268435456"});
 }
+
+} // namespace test_fuzz_inputs

@@ -21,6 +21,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_glossy {
+
 using namespace rt;
 
 namespace {
@@ -289,3 +291,5 @@ TEST_CASE("course scenes: a plain material with a specular term is blinn_phong t
     CHECK(renderer.compiled().materials[0].kind == material_kind::lambertian);
     CHECK(renderer.compiled().materials[0].albedo.x == doctest::Approx(0.5));
 }
+
+} // namespace test_glossy

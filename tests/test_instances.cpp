@@ -17,6 +17,8 @@
 #include <random>
 #include <sstream>
 
+namespace test_instances {
+
 using namespace rt;
 
 namespace {
@@ -362,3 +364,5 @@ TEST_CASE("instances: a textured shape inside an instance has the (u, v) of its 
         CHECK(v == doctest::Approx(p.v).epsilon(1e-5));
     }
 }
+
+} // namespace test_instances

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+namespace test_layout {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -135,3 +137,5 @@ TEST_CASE("layout: the include graph has no cycle") {
     CHECK(seen.count("engine/path_tracer.h") == 1);
     CHECK(seen.count("engine/scene_compiler.h") == 1);
 }
+
+} // namespace test_layout

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+namespace test_light_sampling {
+
 using namespace rt;
 
 namespace {
@@ -678,3 +680,5 @@ TEST_CASE("alias_table: chi-square of sample() counts for skewed weights; zero w
     CHECK(w[t.sample(0.0f)] > 0);
     CHECK(w[t.sample(0x1.fffffep-1f)] > 0);
 }
+
+} // namespace test_light_sampling

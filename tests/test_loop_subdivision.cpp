@@ -15,6 +15,8 @@
 
 #include <unistd.h>
 
+namespace test_loop_subdivision {
+
 using app::tri_mesh;
 using rt::vec3;
 
@@ -241,3 +243,5 @@ TEST_CASE("loop: malformed OBJ files are refused with the file name") {
     CHECK_THROWS_WITH_AS(app::read_obj((dir.path / "missing.obj").string()), doctest::Contains("missing.obj"),
                          rt::scene_error);
 }
+
+} // namespace test_loop_subdivision

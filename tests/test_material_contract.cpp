@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+namespace test_material_contract {
+
 using namespace rt;
 
 namespace {
@@ -472,3 +474,5 @@ TEST_CASE("material contract: Beer's law inside absorbing glass, and nothing els
     }
     CHECK_FALSE(compile_material(dielectric(1.5, color(0, 0, 0))).absorbs_inside()); // clear glass
 }
+
+} // namespace test_material_contract

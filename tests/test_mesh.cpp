@@ -20,6 +20,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_mesh {
+
 using namespace rt;
 
 namespace {
@@ -268,3 +270,5 @@ TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads
     CHECK(one.stats.nonfinite_samples == 0);
     CHECK(one.img.data() == two.img.data());
 }
+
+} // namespace test_mesh

@@ -10,6 +10,8 @@
 #include <limits>
 #include <string>
 
+namespace test_metrics {
+
 using namespace rt;
 
 namespace {
@@ -209,3 +211,5 @@ TEST_CASE("metrics: images of different sizes or empty images throw, naming the 
     check_throws_with([&] { compare_loaded(loaded(a, true), loaded(b, false)); }, {"3x2", "2x3"});
     check_throws_with([&] { compare_linear(image(), image()); }, {"empty", "0x0"});
 }
+
+} // namespace test_metrics

@@ -19,6 +19,8 @@
 #include <memory>
 #include <random>
 
+namespace test_motion {
+
 using namespace rt;
 
 namespace {
@@ -195,3 +197,5 @@ TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, 
     CHECK(test::same_bits(one.img, two.img));
     CHECK_FALSE(test::same_bits(one.img, test::render_checked(cam, still).img));
 }
+
+} // namespace test_motion

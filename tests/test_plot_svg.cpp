@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_plot_svg {
+
 using app::plot_layout;
 using app::plot_options;
 using app::plot_series;
@@ -332,3 +334,5 @@ TEST_CASE("plot_svg: no drawable point, x and y of different lengths, or no room
     tiny.width = 120, tiny.height = 80;
     CHECK_THROWS_AS(app::render_loglog_svg({{"fine", {1, 2}, {1, 2}}}, tiny), rt::scene_error);
 }
+
+} // namespace test_plot_svg

@@ -12,6 +12,8 @@
 #include <atomic>
 #include <cstdint>
 
+namespace test_progress_interrupt {
+
 using namespace rt;
 
 TEST_CASE("format_duration: m:ss below an hour, h:mm:ss from there, rounded down") {
@@ -174,3 +176,5 @@ TEST_CASE("render_samples, adaptive: a stop in round 0 keeps the pixels done, bl
     CHECK(same(r.img.pixel(11, 0), color(0, 0, 0)));
     CHECK(same(r.img.pixel(0, 1), color(0, 0, 0)));
 }
+
+} // namespace test_progress_interrupt

@@ -10,6 +10,8 @@
 #include <limits>
 #include <string>
 
+namespace test_ray_workload {
+
 using rt::vec3;
 using rt::vec3f;
 
@@ -208,3 +210,5 @@ TEST_CASE("workload: misses give no secondary rays; impossible tracer answers an
     CHECK_THROWS_AS(app::make_standard_workload(box_lo, box_lo, miss, 4), rt::scene_error);          // a point
     CHECK_THROWS_AS(app::make_standard_workload(box_lo, box_hi, miss, 0), rt::scene_error);          // no pixels
 }
+
+} // namespace test_ray_workload

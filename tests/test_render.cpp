@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_render {
+
 using namespace rt;
 
 namespace {
@@ -592,3 +594,5 @@ TEST_CASE("camera samples: thin-lens rays start on the lens disk and pass throug
             CHECK(std::fabs(c.y() - (y + 0.5)) <= 5 * se);
         }
 }
+
+} // namespace test_render

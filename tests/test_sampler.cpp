@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+namespace test_sampler {
+
 using namespace rt;
 
 namespace {
@@ -307,3 +309,5 @@ TEST_CASE("every sampler is unbiased on the cover scene, and Sobol and stratifie
     CHECK(mse[1] < 0.9 * mse[0]);
     CHECK(mse[2] < 0.8 * mse[0]);
 }
+
+} // namespace test_sampler

@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_scene_io {
+
 using namespace rt;
 
 namespace {
@@ -322,3 +324,5 @@ TEST_CASE("parse_scene: malformed conductor and glass lines are 'name:LINE: prob
     check_fails("sphere 0 0 -1 0.5 glass 0 0 inf 0 1.5\n", 1, {"'inf'", "finite"});
     check_fails("sphere 0 0 -1 0.5 velvet 0.1 0.2 0.5 0 0\n", 1, {"glass", "conductor"});
 }
+
+} // namespace test_scene_io

@@ -17,6 +17,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_smooth_shading {
+
 using namespace rt;
 
 namespace {
@@ -113,3 +115,5 @@ TEST_CASE("smooth shading: a scene file's `smooth` turns it on, with computed no
     CHECK(smooth_mesh->normals.size() > 0);
     CHECK(smooth_mesh->face_normals.size() == smooth_mesh->faces.size());
 }
+
+} // namespace test_smooth_shading

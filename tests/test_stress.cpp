@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_stress {
+
 using namespace rt;
 
 namespace {
@@ -970,3 +972,5 @@ TEST_CASE("bad input: spheres too large for float arithmetic are rejected or ren
         }
     }
 }
+
+} // namespace test_stress

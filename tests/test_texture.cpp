@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+namespace test_texture {
+
 using namespace rt;
 using namespace test;
 
@@ -441,3 +443,5 @@ TEST_CASE("render: a textured light is sampled with its texture at the sampled p
     CHECK(sum_a > 0);
     CHECK(sum_a == doctest::Approx(sum_b).epsilon(0.1));
 }
+
+} // namespace test_texture

@@ -21,6 +21,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_user_shapes {
+
 using namespace rt;
 
 namespace {
@@ -220,3 +222,5 @@ TEST_CASE("render: user spheres with and without bounding boxes give the same im
     CHECK(with_box.stats.rays == without.stats.rays);
     CHECK(with_box.stats.nonfinite_samples == 0);
 }
+
+} // namespace test_user_shapes

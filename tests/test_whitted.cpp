@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+namespace test_whitted {
+
 namespace {
 
 const double pi = 3.14159265358979323846;
@@ -610,3 +612,5 @@ TEST_CASE("whitted: a user-written hittable is shaded with the material it repor
     check_centre(b, 50, 25, 12);
     CHECK(int(b[0]) == 0); // a corner misses: the default black background
 }
+
+} // namespace test_whitted
