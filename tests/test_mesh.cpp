@@ -73,7 +73,7 @@ void check_obj_error(const test::scratch_dir& dir, const std::string& text, cons
 
 } // namespace
 
-TEST_CASE("load_obj: quads become triangles; positions, normals and uvs are kept") {
+TEST_CASE("load_obj: quads become triangles, positions, normals and uvs are kept") {
     test::scratch_dir dir("cube");
     auto mat = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
     auto mesh = load_obj(dir.write("cube.obj", cube_obj), mat);

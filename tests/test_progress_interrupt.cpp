@@ -107,7 +107,7 @@ TEST_CASE("render_samples: a stop in the first pass leaves the pixels not reache
     CHECK(same(r.img.pixel(31, 15), color(0, 0, 0)));
 }
 
-TEST_CASE("render_samples: a flag raised before the render takes no sample; one never raised changes nothing") {
+TEST_CASE("render_samples: a flag raised before the render takes no sample, one never raised changes nothing") {
     render_settings s = one_thread(8);
     std::atomic<bool> stop{true};
     s.stop = &stop;

@@ -68,7 +68,7 @@ double brute_force_t(const std::vector<std::shared_ptr<user_sphere>>& shapes, co
 
 } // namespace
 
-TEST_CASE("user shapes with a bounding box go into the BVH; those without one do not") {
+TEST_CASE("user shapes with a bounding box go into the BVH, those without one do not") {
     auto boxed = grid();
     hittable_list world;
     for (auto& s : boxed) world.add(s);
