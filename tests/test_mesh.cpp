@@ -249,7 +249,7 @@ TEST_CASE("render: a convex mesh in a white furnace renders its albedo exactly, 
     }
 }
 
-TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads") {
+TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads" * doctest::test_suite("threads")) {
     auto bunny = load_obj(mesh_dir + "/bunny_npm.obj", std::make_shared<metal>(color(0.8, 0.6, 0.4), 0.2));
     hittable_list world;
     world.add(bunny);

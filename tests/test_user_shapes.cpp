@@ -198,7 +198,7 @@ TEST_CASE("a user shape is found through its box: a box elsewhere hides it, as t
     CHECK(hit.t == doctest::Approx(4).epsilon(1e-6));
 }
 
-TEST_CASE("render: user spheres with and without bounding boxes give the same image") {
+TEST_CASE("render: user spheres with and without bounding boxes give the same image" * doctest::test_suite("threads")) {
     // A small grid of user spheres on a built-in ground under the sky: the BVH changes which
     // shapes are asked, never which hit is nearest, so the images agree bit for bit.
     auto render_grid = [](user_sphere::box_kind box) {

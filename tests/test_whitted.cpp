@@ -496,7 +496,7 @@ TEST_CASE("whitted: 8-bit encoding clamps to [0, 255] and truncates") {
         }
 }
 
-TEST_CASE("whitted: one and two threads give identical bytes") {
+TEST_CASE("whitted: one and two threads give identical bytes" * doctest::test_suite("threads")) {
     for (const char* name : {"closed.xml", "glass_slab.xml", "sphere.xml", "shadow.xml"}) {
         CAPTURE(name);
         rt::whitted_scene s = load(name);
