@@ -5,7 +5,9 @@
 // took. One thread makes the order of pixels, and so the point of the stop, deterministic: tiles
 // in order, each pixel of a tile row by row, a whole pass over the image before the next.
 
+#include <rtweekend/camera.h>
 #include <rtweekend/engine/scheduler.h>
+#include <rtweekend/hittable_list.h>
 
 #include <doctest/doctest.h>
 
@@ -231,4 +233,47 @@ TEST_CASE("render_samples: a stop raised by another thread during a two-thread r
     CHECK(fewest == r.stats.min_pixel_samples);
     CHECK(most == r.stats.max_pixel_samples);
     CHECK(most <= 2 * std::max(fewest, 1)); // the counts differ by the interrupted pass at most
+}
+
+// The milestone apps 02-06 render with their own ray_color through rt::render(cam, world,
+// ray_color), which returns the statistics with the image: the sample counts of an interrupted
+// render are known, as the path tracer's are.
+TEST_CASE("render(cam, world, ray_color): the statistics of a shader render, and of one stopped by cam.stop") {
+    camera cam;
+    cam.image_width = 32;
+    cam.aspect_ratio = 2.0; // 32x16: two 16x16 tiles
+    cam.samples_per_pixel = 4;
+    cam.threads = 1;
+    cam.quiet = true;
+    hittable_list world;
+    std::atomic<bool> stop{false};
+    uint64_t calls = 0, stop_at = 0;
+    auto shade = [&](const ray&, const hittable&) {
+        if (++calls == stop_at) stop = true;
+        return color(0.25, 0.5, 1.0);
+    };
+    // Uninterrupted: every pixel 4 samples, a ray each, the colour exactly.
+    render_result all = render(cam, world, shade);
+    CHECK_FALSE(all.stats.interrupted);
+    CHECK(all.stats.samples == uint64_t(pixels) * 4);
+    CHECK(all.stats.rays == uint64_t(pixels) * 4);
+    CHECK(all.stats.min_pixel_samples == 4);
+    CHECK(same(all.img.pixel(31, 15), color(0.25, 0.5, 1.0)));
+    CHECK(all.img.data() == cam.render_image(world, shade).data()); // the image render_image gives
+
+    // Stopped at the 600th call: passes of 1, 1 and 2 samples per pixel (512, 512, 1024 calls);
+    // call 600 is the 88th of the second pass, pixel 87 of tile 0, which finishes: pixels 0..87
+    // of tile 0 took 2 samples, the rest 1.
+    cam.stop = &stop;
+    calls = 0;
+    stop_at = 600;
+    render_result part = render(cam, world, shade);
+    CHECK(part.stats.interrupted);
+    CHECK(part.stats.samples == 600);
+    CHECK(part.stats.min_pixel_samples == 1);
+    CHECK(part.stats.max_pixel_samples == 2);
+    CHECK(part.stats.pixels_without_samples == 0);
+    CHECK(part.stats.completed == doctest::Approx(600.0 / 2048.0));
+    CHECK(part.stats.mean_pixel_samples() == doctest::Approx(600.0 / 512.0));
+    CHECK(same(part.img.pixel(0, 0), color(0.25, 0.5, 1.0)));
 }

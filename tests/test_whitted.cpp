@@ -18,8 +18,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -609,4 +612,119 @@ TEST_CASE("whitted: a user-written hittable is shaded with the material it repor
     std::vector<unsigned char> b = render_3x3(s);
     check_centre(b, 50, 25, 12);
     CHECK(int(b[0]) == 0); // a corner misses: the default black background
+}
+
+// Interrupting a Whitted render (whitted_options::stop): a user-written sphere that counts the
+// rays it is asked about raises the flag, as Ctrl-C would, from inside the render.
+namespace {
+class counting_sphere : public rt::hittable {
+  public:
+    counting_sphere(std::shared_ptr<rt::material> m, std::atomic<bool>& stop, uint64_t stop_at)
+        : inner_(rt::point3(0, 0, -5), 1.0, std::move(m)), stop_(stop), stop_at_(stop_at) {}
+    bool hit(const rt::ray& r, rt::interval t, rt::hit_record& rec) const override {
+        if (++calls_ == stop_at_) stop_ = true;
+        return inner_.hit(r, t, rec);
+    }
+    uint64_t calls() const { return calls_.load(); }
+
+  private:
+    rt::sphere inner_;
+    std::atomic<bool>& stop_;
+    uint64_t stop_at_;
+    mutable std::atomic<uint64_t> calls_{0};
+};
+
+struct stopped_whitted {
+    rt::whitted_render r;
+    uint64_t calls = 0;
+};
+
+// A 32x16 image (two 16x16 tiles) in which every camera ray hits the sphere, whose material shows
+// only the ambient light: (10, 20, 30). No light, no bounces: one question to the sphere per pixel.
+stopped_whitted render_stopping(int threads, uint64_t stop_at, bool raised_before = false) {
+    auto m = std::make_shared<rt::whitted_material>();
+    m->ambient = rt::color(1, 1, 1);
+    std::atomic<bool> stop{raised_before};
+    auto sphere = std::make_shared<counting_sphere>(m, stop, stop_at);
+    rt::whitted_scene s;
+    s.background = rt::color(1, 2, 3);
+    s.ambient_light = rt::color(10, 20, 30);
+    s.world.add(sphere);
+    rt::view_camera c;
+    c.left = -0.1;
+    c.right = 0.1;
+    c.bottom = -0.05;
+    c.top = 0.05;
+    c.width = 32;
+    c.height = 16;
+    s.cameras.push_back(c);
+    rt::whitted_options opt;
+    opt.threads = threads;
+    opt.quiet = true;
+    opt.stop = &stop;
+    stopped_whitted out{rt::render_whitted(s, 0, opt), 0};
+    out.calls = sphere->calls();
+    return out;
+}
+
+bool is_rgb(const rt::image& img, int x, int y, float r, float g, float b) {
+    const size_t i = 3 * (size_t(y) * size_t(img.width()) + size_t(x));
+    return img.data()[i] == r && img.data()[i + 1] == g && img.data()[i + 2] == b;
+}
+} // namespace
+
+TEST_CASE("whitted: a stop between pixels leaves the pixels traced, the others black, and says how many") {
+    // One thread takes tile 0 (x, y < 16) row by row: the flag rises while pixel 39 = (7, 2) is
+    // traced; it is finished, and the render stops before pixel 40.
+    stopped_whitted one = render_stopping(1, 40);
+    CHECK(one.calls == 40);
+    CHECK(one.r.stats.interrupted);
+    CHECK(one.r.stats.samples == 40);
+    CHECK(one.r.stats.pixels_without_samples == 32 * 16 - 40);
+    CHECK(one.r.stats.min_pixel_samples == 0);
+    CHECK(one.r.stats.max_pixel_samples == 1);
+    CHECK(one.r.stats.completed == doctest::Approx(40.0 / 512.0));
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) {
+            CAPTURE(x);
+            CAPTURE(y);
+            const bool traced = x < 16 && y * 16 + x < 40;
+            CHECK(is_rgb(one.r.img, x, y, traced ? 10.0f : 0.0f, traced ? 20.0f : 0.0f, traced ? 30.0f : 0.0f));
+        }
+
+    // Raised before the render: nothing traced, all black.
+    stopped_whitted none = render_stopping(1, 0, true);
+    CHECK(none.calls == 0);
+    CHECK(none.r.stats.interrupted);
+    CHECK(none.r.stats.samples == 0);
+    CHECK(none.r.stats.pixels_without_samples == 512);
+    CHECK(is_rgb(none.r.img, 0, 0, 0, 0, 0));
+
+    // Never raised: the whole image, not interrupted.
+    stopped_whitted all = render_stopping(1, 0);
+    CHECK_FALSE(all.r.stats.interrupted);
+    CHECK(all.r.stats.samples == 512);
+    CHECK(all.r.stats.pixels_without_samples == 0);
+    CHECK(is_rgb(all.r.img, 31, 15, 10, 20, 30));
+}
+
+TEST_CASE("whitted: a stop on two threads: every pixel is traced or black, as the statistics say"
+          * doctest::test_suite("threads")) {
+    // Where the two workers are when the flag rises is up to the scheduler; what must hold is
+    // that each pixel was either traced whole or left black, and that the counts agree.
+    stopped_whitted two = render_stopping(2, 100);
+    CHECK(two.r.stats.interrupted);
+    CHECK(two.r.stats.threads == 2);
+    CHECK(two.r.stats.samples >= 100);
+    CHECK(two.r.stats.samples < 512);
+    CHECK(two.r.stats.samples == two.calls);
+    uint64_t traced = 0, black = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) {
+            if (is_rgb(two.r.img, x, y, 10, 20, 30)) ++traced;
+            else if (is_rgb(two.r.img, x, y, 0, 0, 0)) ++black;
+        }
+    CHECK(traced == two.r.stats.samples);
+    CHECK(black == two.r.stats.pixels_without_samples);
+    CHECK(traced + black == 512);
 }

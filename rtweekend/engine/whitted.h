@@ -42,6 +42,10 @@
 //     depths up to about 6.
 // The scenes in tests/data (and showcase and bunny_glass at depths 10 and 20) render to the same
 // bytes with the bounds as without them.
+//
+// Interruption (whitted_options::stop): the scheduler polls the flag before each pixel (one
+// camera ray and its tree), so a render stops within one pixel; the pixels not reached are black
+// (radiance 0), and render_stats says how many there are (interrupted, pixels_without_samples).
 
 #include "../io/image_write.h"
 #include "../io/input_limits.h"
@@ -57,6 +61,7 @@
 #include "surface_coordinates.h"
 #include "validate.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -75,6 +80,9 @@ struct whitted_options {
     // followed, and at most max_branch_rays rays are traced after the camera ray.
     float min_branch_weight = 1.0f / (1 << 24);
     uint32_t max_branch_rays = 1u << 14;
+    // Set to true (from any thread, e.g. an app's SIGINT handling) to stop the render between
+    // pixels; the pixels not reached are black (see "Interruption" above). The caller owns it.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 struct whitted_render {
@@ -363,6 +371,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     settings.samples_per_pixel = 1;
     settings.threads = options_.threads;
     settings.quiet = options_.quiet;
+    settings.stop = options_.stop;
     render_result out = render_samples(
         c.width, c.height, settings,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
