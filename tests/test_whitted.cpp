@@ -614,6 +614,63 @@ TEST_CASE("whitted: a user-written hittable is shaded with the material it repor
     CHECK(int(b[0]) == 0); // a corner misses: the default black background
 }
 
+// The course's rule for glass seen from inside: a hit on a dielectric reached from inside it has
+// no ambient, diffuse or specular term (whitted_options::shade_inside_dielectrics, README).
+TEST_CASE("whitted: a hit on glass from inside gets no local shading (the course's rule), or all of it (option)") {
+    // glass_slab_shaded.xml: glass_slab.xml's slab (n = 2.4, c = (0.05,0.1,0.2), thickness 2) and
+    // wall B (L_B = (250,200,150)), the glass now shaded: ka = (0.3,0.2,0.1), kd = (0.1,0.2,0.3),
+    // ks = 0.5, p = 10, Ia = 100, a light I = 3920 at (0,0,10); MaxRecursionDepth 2. Camera 1's
+    // centre ray goes down -z; R = (1.4/3.4)^2 at normal incidence, T = 1 - R, a = exp(-2c).
+    //   depth 0, F (front face, from outside, at (0,0,-4)): local shading
+    //     S_F = ka Ia + E (kd + ks),  E = 3920 / 14^2 = 20, n.l = n.h = 1 (light, eye, normal on
+    //     the axis: l = v = h = +z): S_F = (30,20,10) + 20 (0.6,0.7,0.8) = (42,34,26);
+    //     its reflection leaves towards +z: black; its refraction (x T) crosses the slab (x a) to
+    //   depth 1, K (back face, from inside): local shading S_in; refraction out (x T) to B: L_B;
+    //     reflection (x R) back across (x a) to
+    //   depth 2, F from inside: local shading S_in only (no bounces left).
+    //   L = S_F + T a (S_in + T L_B + R a S_in)
+    // The course's rule: S_in = 0. Shading inside too: S_in = ka Ia, no more (the shadow ray of a
+    // hit from inside starts inside the glass and the glass blocks it).
+    rt::whitted_scene s = load("glass_slab_shaded.xml");
+    REQUIRE(s.max_recursion_depth == 2);
+    const double n = 2.4;
+    const double R = ((n - 1) / (n + 1)) * ((n - 1) / (n + 1));
+    const double T = 1 - R;
+    const double c[3] = {0.05, 0.1, 0.2}, LB[3] = {250, 200, 150};
+    const double ka[3] = {0.3, 0.2, 0.1}, kd[3] = {0.1, 0.2, 0.3}, ks = 0.5, Ia = 100, E = 3920.0 / (14 * 14);
+    double course[3], shaded[3];
+    for (int ch = 0; ch < 3; ++ch) {
+        const double a = std::exp(-2 * c[ch]);
+        const double S_F = ka[ch] * Ia + E * (kd[ch] + ks);
+        course[ch] = S_F + T * a * (0 + T * LB[ch] + R * a * 0);
+        const double S_in = ka[ch] * Ia;
+        shaded[ch] = S_F + T * a * (S_in + T * LB[ch] + R * a * S_in);
+    }
+    // The numbers: (198.01, 146.93, 95.34) and (224.01, 162.42, 101.54).
+    CHECK(course[0] == doctest::Approx(198.01).epsilon(1e-4));
+    CHECK(shaded[0] == doctest::Approx(224.01).epsilon(1e-4));
+
+    rendered by_default = render(s, 0);
+    REQUIRE(by_default.width == 3);
+    check_pixel(by_default, 1, 1, {course[0], course[1], course[2]});
+
+    rt::whitted_options opt;
+    opt.quiet = true;
+    opt.shade_inside_dielectrics = true;
+    rt::whitted_render r = rt::render_whitted(s, 0, opt);
+    rendered inside_shaded{r.img.width(), r.img.height(), rt::encode_whitted_8bit(r.img), r.img.data()};
+    check_pixel(inside_shaded, 1, 1, {shaded[0], shaded[1], shaded[2]});
+
+    // The rule changes nothing where no ray travels inside glass: glass_slab.xml's glass has no
+    // own shading (ka = kd = ks = 0), and sphere.xml has no glass.
+    for (const char* name : {"glass_slab.xml", "sphere.xml"}) {
+        CAPTURE(name);
+        rt::whitted_scene other = load(name);
+        rt::whitted_render a = rt::render_whitted(other, 0, opt);
+        CHECK(a.img.data() == render(other, 0).raw);
+    }
+}
+
 // Interrupting a Whitted render (whitted_options::stop): a user-written sphere that counts the
 // rays it is asked about raises the flag, as Ctrl-C would, from inside the render.
 namespace {
