@@ -292,16 +292,6 @@ inline void write_output(const options& o, const rt::render_result& r) {
     std::exit(130);
 }
 
-// After a render that returned its image only (the apps with their own ray_color): the same
-// exit, without the sample counts it cannot know.
-inline void exit_if_interrupted(const options& o) {
-    if (!interrupt_requested.load()) return;
-    std::fprintf(stderr, "%s: interrupted; wrote %s with the samples taken\n", o.program.c_str(),
-                 o.output.empty() ? "the image to standard output" : o.output.c_str());
-    std::fflush(nullptr);
-    std::exit(130);
-}
-
 // Runs an app's body, turning scene_error (and any other failure) into one error line.
 template <class Body>
 int run(const description& d, Body&& body) {

@@ -16,6 +16,7 @@
 #include <rtweekend/engine/whitted.h>
 #include <rtweekend/io/xml_scene.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -75,6 +76,22 @@ std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std:
     return paths;
 }
 
+// Which cameras after `camera` (0-based) were not rendered: "" when none, else "; camera 3 not
+// rendered" or "; cameras 2 to 4 not rendered".
+std::string cameras_left(size_t camera, size_t cameras) {
+    if (camera + 1 >= cameras) return "";
+    if (camera + 2 == cameras) return "; camera " + std::to_string(cameras) + " not rendered";
+    return "; cameras " + std::to_string(camera + 2) + " to " + std::to_string(cameras) + " not rendered";
+}
+
+// Ctrl-C between two cameras: the images written so far stay, the rest are not rendered.
+void exit_if_interrupted_before(size_t camera, size_t cameras) {
+    if (camera == 0 || !app::interrupt_requested.load()) return;
+    std::fprintf(stderr, "render: interrupted after camera %zu%s\n", camera, cameras_left(camera - 1, cameras).c_str());
+    std::fflush(nullptr);
+    std::exit(130);
+}
+
 // A course scene through the path tracer: its point lights with indirect light, each material's
 // DiffuseReflectance as a Lambertian albedo under its mirror, conductor or glass lobe. Ambient
 // light has no meaning here (indirect light is computed, not approximated) and is ignored, as are
@@ -99,14 +116,18 @@ void render_xml_path_traced(const app::options& opt, const rt::whitted_scene& sc
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
     std::vector<rt::point_light> lights = scene.lights;
     for (rt::point_light& l : lights) l.intensity *= rt::pi;
-    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const size_t cameras = scene.cameras.size();
+    for (size_t i = 0; i < cameras; ++i) {
+        exit_if_interrupted_before(i, cameras);
         rt::render_result r = rt::path_trace(scene.world, rt::view_camera_frame(scene.cameras[i]), env, settings, lights);
         rt::write_whitted_image(outputs[i], r.img);
         if (r.stats.interrupted) {
             std::fprintf(stderr,
                          "render: interrupted after %d %% of camera %zu (average %.1f samples per pixel); wrote %s "
-                         "with the samples taken\n",
-                         int(r.stats.completed * 100), i + 1, r.stats.mean_pixel_samples(), outputs[i].c_str());
+                         "with the samples taken%s\n",
+                         int(r.stats.completed * 100), i + 1, r.stats.mean_pixel_samples(), outputs[i].c_str(),
+                         cameras_left(i, cameras).c_str());
+            std::fflush(nullptr);
             std::exit(130);
         }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
@@ -127,10 +148,28 @@ void render_xml(const app::options& opt) {
     options.threads = opt.threads.value_or(0);
     options.cull_back_faces = opt.cull_back_faces.value_or(false);
     options.quiet = opt.quiet;
+    // Ctrl-C: the current camera's image with the pixels traced so far (the others black), then
+    // exit 130, as the path tracer does.
+    app::catch_interrupts();
+    options.stop = &app::interrupt_requested;
     rt::whitted_renderer renderer(scene, options);
-    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const size_t cameras = scene.cameras.size();
+    for (size_t i = 0; i < cameras; ++i) {
+        exit_if_interrupted_before(i, cameras);
         rt::whitted_render r = renderer.render(i);
         rt::write_whitted_image(outputs[i], r.img);
+        if (r.stats.interrupted) {
+            const uint64_t pixels = uint64_t(r.img.width()) * uint64_t(r.img.height());
+            std::fprintf(stderr,
+                         "render: interrupted after %d %% of camera %zu (%llu of %llu pixels traced, the other %llu "
+                         "black); wrote %s with the pixels traced%s\n",
+                         int(r.stats.completed * 100), i + 1, static_cast<unsigned long long>(r.stats.samples),
+                         static_cast<unsigned long long>(pixels),
+                         static_cast<unsigned long long>(r.stats.pixels_without_samples), outputs[i].c_str(),
+                         cameras_left(i, cameras).c_str());
+            std::fflush(nullptr);
+            std::exit(130);
+        }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
     }
 }

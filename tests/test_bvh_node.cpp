@@ -106,7 +106,7 @@ TEST_CASE("bvh_node: the renderer sees through it: the same bits as the plain li
     CHECK(same_bits(render_checked(cam, list).img, render_checked(cam, wrapped).img));
 }
 
-TEST_CASE("bvh_node: a node over one object holds it on both sides; the renderer takes it once") {
+TEST_CASE("bvh_node: a node over one object holds it on both sides, the renderer takes it once") {
     auto mat = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
     hittable_list one(std::make_shared<sphere>(point3(0, 0, 0), 1, mat));
     hittable_list world(std::make_shared<bvh_node>(one));

@@ -198,7 +198,7 @@ TEST_CASE("fuzz: scene files: NUL bytes, nothing to render, a device as a mesh, 
 
 // --- 5. meshes -------------------------------------------------------------------------------------
 
-TEST_CASE("fuzz: PLY values must fit their declared type; write_ply refuses what a float cannot hold") {
+TEST_CASE("fuzz: PLY values must fit their declared type, write_ply refuses what a float cannot hold") {
     check_refused([] { load_ply(fuzz_dir + "ply_uchar_out_of_range.ply", nullptr); },
                   {"ply_uchar_out_of_range.ply:12: vertex 0: '-70000' (property 'red') does not fit its type uchar"});
     check_refused([] { load_ply(fuzz_dir + "ply_float_out_of_range.ply", nullptr); },

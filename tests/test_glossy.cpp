@@ -108,7 +108,7 @@ TEST_CASE("fresnel_average: the share of diffuse light a smooth dielectric refle
     CHECK(std::fabs(fresnel_average(1.5) - 0.0926) < 0.002);
 }
 
-TEST_CASE("plastic: reflects F(cos) + albedo (1 - F(cos)); a white plastic reflects everything") {
+TEST_CASE("plastic: reflects F(cos) + albedo (1 - F(cos)), a white plastic reflects everything") {
     pcg32 rng(17);
     for (double n : {1.5, 2.0}) {
         for (color albedo : {color(1, 1, 1), color(0.8, 0.3, 0.05)}) {
@@ -198,7 +198,7 @@ TEST_CASE("blinn_phong: the glossy lobe reflects at most ks, exactly its closed 
     }
 }
 
-TEST_CASE("blinn_phong: diffuse + specular above 1 is scaled down per channel; the surface stays within 1") {
+TEST_CASE("blinn_phong: diffuse + specular above 1 is scaled down per channel, the surface stays within 1") {
     const compiled_material m = compile_material(blinn_phong(color(0.8, 0.2, 0.5), color(1.0, 0.5, 0.3), 30));
     CHECK(m.albedo.x == doctest::Approx(0.8 / 1.8));
     CHECK(m.specular.x == doctest::Approx(1.0 / 1.8));

@@ -651,7 +651,7 @@ TEST_CASE("alias_table: every float uniform enumerated gives the pmf to the unif
     }
 }
 
-TEST_CASE("alias_table: chi-square of sample() counts for skewed weights; zero weights never drawn") {
+TEST_CASE("alias_table: chi-square of sample() counts for skewed weights, zero weights never drawn") {
     // 2000 weights over 8 decades, a fifth of them zero: the O(n) build, and draws from pcg32.
     pcg32 rng(77);
     std::vector<double> w(2000);

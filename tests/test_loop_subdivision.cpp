@@ -186,7 +186,7 @@ TEST_CASE("loop: non-manifold and degenerate inputs are refused with the vertex 
     CHECK_THROWS_AS(app::loop_subdivide(tetrahedron(), -1), rt::scene_error);
 }
 
-TEST_CASE("loop: an unused vertex keeps its position; duplicated positions are not welded") {
+TEST_CASE("loop: an unused vertex keeps its position, duplicated positions are not welded") {
     tri_mesh m;
     // Two triangles forming a square, but the diagonal's vertices repeated under new indices:
     // the index topology is two separate triangles, each all boundary.

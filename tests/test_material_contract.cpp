@@ -119,7 +119,7 @@ void check_binomial(long hits, long n, double p) {
 
 } // namespace
 
-TEST_CASE("material contract: sample's value is eval / pdf at the sampled direction; delta lobes have no density") {
+TEST_CASE("material contract: sample's value is eval / pdf at the sampled direction, delta lobes have no density") {
     pcg32 rng(101);
     for (const named_material& nm : all_materials()) {
         for (bool front : {true, false}) {

@@ -174,7 +174,8 @@ TEST_CASE("motion: a pixel the moving emitter covers for a quarter of the shutte
     CHECK(std::fabs(r.img.pixel(0, 0).x() - expected_value) < 4 * sigma);
 }
 
-TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, and differs from a still one") {
+TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, and differs from a still one"
+          * doctest::test_suite("threads")) {
     auto scene_with = [](bool moving) {
         hittable_list world;
         world.add(std::make_shared<sphere>(point3(0, -100.5, -1), 100, grey()));

@@ -185,7 +185,7 @@ TEST_CASE("workload: deterministic, and indifferent to the orientation of the tr
     }
 }
 
-TEST_CASE("workload: misses give no secondary rays; impossible tracer answers and boxes are refused") {
+TEST_CASE("workload: misses give no secondary rays, impossible tracer answers and boxes are refused") {
     auto miss = [](const rt::ray3f&, float&, vec3f&) { return false; };
     app::workload w = app::make_standard_workload(box_lo, box_hi, miss, 4);
     CHECK(w.primary.rays.size() == 16);

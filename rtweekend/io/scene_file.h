@@ -95,7 +95,9 @@ struct scene_description {
     std::vector<point_light> point_lights; // found by light sampling only (render with rt::render(cam, world, point_lights))
 };
 
-// Reads a scene from a stream; `name` is the file name used in error messages.
+// Reads a scene from a stream; `name` is the file name used in error messages. Text without a
+// directive (nothing, or only comments and blank lines) is refused: "<name>: scene file is empty
+// (no directives)", as load_scene refuses an empty file.
 scene_description parse_scene(std::istream& in, const std::string& name);
 
 // Throws scene_error unless the image `cam` would render is within max_image_pixels
@@ -103,9 +105,10 @@ scene_description parse_scene(std::istream& in, const std::string& name);
 // 65536 pixels, or an aspect ratio that is not positive, is left to the camera's own check.
 void check_camera_image_size(const camera& cam);
 
-// Reads a scene file. Besides parse_scene's checks, refuses a file that is empty (or only
-// comments) or that places no object in the world: either would render nothing but the sky. And
-// refuses an image larger than max_image_pixels (io/input_limits.h), before anything is allocated.
+// Reads a scene file. Besides parse_scene's checks (an empty file, or one of only comments, is
+// refused there), refuses a file that places no object in the world: it would render nothing but
+// the sky. And refuses an image larger than max_image_pixels (io/input_limits.h), before anything
+// is allocated.
 scene_description load_scene(const std::string& path);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
@@ -552,6 +555,7 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
     detail::scene_parser parser(scene, name);
     std::string text;
     int number = 0;
+    bool any_directive = false;
     while (std::getline(in, text)) {
         ++number;
         // A text format holds no NUL bytes; one means a binary or damaged file, and would hide
@@ -564,9 +568,12 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
         std::vector<std::string> tokens;
         for (std::string w; words >> w;) tokens.push_back(w);
         if (tokens.empty()) continue;
+        any_directive = true;
         parser.line(detail::scene_line(name, number, std::move(tokens)));
     }
     if (in.bad()) throw scene_error(name + ": read error");
+    // Nothing to render but the default sky: surely not what was meant (a missing or truncated file).
+    if (!any_directive) throw scene_error(name + ": scene file is empty (no directives)");
     parser.finish();
     return scene;
 }
@@ -583,18 +590,10 @@ inline scene_description load_scene(const std::string& path) {
     const std::string text = read_file(path, "scene file");
     std::istringstream in(text);
     scene_description scene = parse_scene(in, path);
-    if (scene.world.objects.empty()) {
-        // Only comments and blank lines, or directives that placed nothing in the world.
-        bool has_directive = false;
-        std::istringstream lines(text);
-        for (std::string line, word; !has_directive && std::getline(lines, line);) {
-            line.erase(std::min(line.find('#'), line.size()));
-            has_directive = bool(std::istringstream(line) >> word);
-        }
-        throw scene_error(path + (has_directive ? ": the scene has no objects (a group's shapes count only where "
-                                                  "an instance places them): it would render only the background"
-                                                : ": scene file is empty (no directives)"));
-    }
+    // Directives that placed nothing in the world (an empty file is parse_scene's error).
+    if (scene.world.objects.empty())
+        throw scene_error(path + ": the scene has no objects (a group's shapes count only where an instance places "
+                                 "them): it would render only the background");
     // The image is allocated at render time; its size is known now.
     try {
         check_camera_image_size(scene.cam);
