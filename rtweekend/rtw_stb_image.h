@@ -9,6 +9,7 @@
 //   img.linear(x, y)                 the pixel's linear RGB, what a texture returns
 //   img.linear_pixels()              every pixel's linear RGB, rows top to bottom, shared so that the
 //                                    renderer can keep them alive (engine/texture_table.h)
+//   img.decode(bytes, name)          the same from a file's bytes in memory (name for messages)
 //
 // Where the file is looked for, as in the book: in $RTW_IMAGES if that is set, then the name as
 // given, then images/, ../images/, and so on up to six parents.
@@ -49,6 +50,9 @@ class rtw_image {
     // Reads `filename`: false when it cannot be opened; throws scene_error when it can but is not
     // an image stb_image decodes.
     bool load(const std::string& filename);
+    // Decodes the bytes of an image file already in memory, as load() does the file's; `filename`
+    // names it in messages. Throws scene_error when they are not an image stb_image decodes.
+    void decode(const std::string& encoded, const std::string& filename);
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -92,8 +96,10 @@ double linear_to_srgb(double linear);
 #pragma GCC diagnostic ignored "-Wsign-compare"
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wdouble-promotion"
+#if !defined(__clang__) // a GCC-only warning: clang warns about the pragma itself
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #endif
 #ifndef STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
@@ -158,7 +164,11 @@ inline rtw_image::rtw_image(const char* image_filename) {
 inline bool rtw_image::load(const std::string& filename) {
     std::error_code ec;
     if (!std::filesystem::exists(filename, ec)) return false;
-    const std::string encoded = read_file(filename, "image texture");
+    decode(read_file(filename, "image texture"), filename);
+    return true;
+}
+
+inline void rtw_image::decode(const std::string& encoded, const std::string& filename) {
     const std::string problem = detail::stb_input_problem(encoded);
     if (!problem.empty()) throw scene_error("cannot read image texture '" + filename + "': " + problem);
     const auto* file = reinterpret_cast<const stbi_uc*>(encoded.data());
@@ -198,7 +208,6 @@ inline bool rtw_image::load(const std::string& filename) {
     bytes_ = std::move(bytes);
     linear_ = std::make_shared<const std::vector<float>>(std::move(lin));
     path_ = filename;
-    return true;
 }
 
 inline const unsigned char* rtw_image::pixel_data(int x, int y) const {

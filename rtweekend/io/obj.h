@@ -27,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <tiny_obj_loader.h>
@@ -40,6 +41,9 @@ class material;
 // with fewer than three corners or more than 1024, an index out of range, a NUL byte, or a file
 // without faces (detail::check_obj_text lists every check).
 std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat);
+
+// load_obj on a file's text already in memory; `path` names it in messages.
+std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path, std::shared_ptr<material> mat);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -153,7 +157,11 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
 } // namespace detail
 
 inline std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat) {
-    const std::string text = read_file(path, "OBJ file");
+    return decode_obj(read_file(path, "OBJ file"), path, std::move(mat));
+}
+
+inline std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
+                                                 std::shared_ptr<material> mat) {
     detail::check_obj_text(text, path);
 
     tinyobj::ObjReaderConfig config;

@@ -81,6 +81,10 @@ namespace rt {
 // Reads a CENG795 XML scene. Throws scene_error (see above).
 whitted_scene load_xml_scene(const std::string& path);
 
+// load_xml_scene on a file's text already in memory: `path` names it in messages, and a plyFile
+// is read relative to its folder.
+whitted_scene decode_xml_scene(const std::string& text, const std::string& path);
+
 // What is wrong with a camera's ImageName as a file name inside the output directory, "" if
 // nothing: it must be a relative path without a ".." component (and not empty), so that the image
 // lands inside the directory the user chose (render -o DIR), never beside or above it.
@@ -620,7 +624,10 @@ class xml_scene_reader {
 } // namespace detail
 
 inline whitted_scene load_xml_scene(const std::string& path) {
-    const std::string text = read_file(path, "XML scene file");
+    return decode_xml_scene(read_file(path, "XML scene file"), path);
+}
+
+inline whitted_scene decode_xml_scene(const std::string& text, const std::string& path) {
     return detail::xml_scene_reader(path, text).read();
 }
 
