@@ -75,8 +75,15 @@ inline std::vector<std::string> xml_output_paths(const rt::whitted_scene& scene,
         if (!parent.empty()) fs::create_directories(parent, ec);
         // A symbolic link inside the directory could still lead out of it: where the file really
         // goes must lie under where the directory really is.
-        const fs::path real_dir = fs::weakly_canonical(dir, ec), real_path = fs::weakly_canonical(path, ec);
-        if (!ec) {
+        // Both made absolute first: weakly_canonical leaves a relative path relative when none of it
+        // exists yet (an image about to be written in the current directory), and a relative path
+        // is never inside an absolute one.
+        std::error_code resolve;
+        fs::path real_dir = fs::absolute(dir, resolve), real_path;
+        if (!resolve) real_path = fs::absolute(path, resolve);
+        if (!resolve) real_dir = fs::weakly_canonical(real_dir, resolve);
+        if (!resolve) real_path = fs::weakly_canonical(real_path, resolve);
+        if (!resolve) {
             auto rel = real_path.lexically_relative(real_dir);
             if (rel.empty() || rel.is_absolute() || *rel.begin() == "..")
                 throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +

@@ -127,14 +127,18 @@ namespace detail {
 
 // What is wrong with an encoded image before stb_image may decode it, "" if nothing: the PNG and
 // BMP headers (image_header.h), then, for every format stb_image knows, the size it reads from
-// the header (stbi_info parses headers only) against the limits of input_limits.h.
+// the header (stbi_info parses headers only) against the limits of input_limits.h and against
+// what the file's length can hold (image_data_problem, image_header.h).
 inline std::string stb_input_problem(const std::string& bytes) {
     std::string problem = image_header_problem(bytes);
     if (!problem.empty()) return problem;
     if (bytes.size() > size_t(INT_MAX)) return "the file is larger than stb_image can decode (2 GiB)";
     int w = 0, h = 0, channels = 0;
-    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels))
-        return image_size_problem(uint64_t(w < 0 ? 0 : w), uint64_t(h < 0 ? 0 : h), "the image");
+    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels)) {
+        const uint64_t width = uint64_t(w < 0 ? 0 : w), height = uint64_t(h < 0 ? 0 : h);
+        problem = image_size_problem(width, height, stb_format_name(bytes));
+        return problem.empty() ? image_data_problem(bytes, width, height) : problem;
+    }
     return {}; // not an image stb_image knows: decoding says so
 }
 

@@ -79,14 +79,15 @@ inline bool obj_float_fits(const std::string& word) {
 
 // tinyobjloader reads what it can and silently turns a malformed number into 0, converts numbers
 // with undefined behaviour when they are out of range, and splits a polygon into triangles in
-// time quadratic in its corners; so the lines that matter are checked first. Throws scene_error
+// time quadratic in its corners; so the lines that matter are checked first, split as
+// tinyobjloader splits them (a lone carriage return ends a line too). Throws scene_error
 // "path:LINE: problem" for:
 //   - a NUL byte anywhere (a text format holds none);
 //   - a coordinate of v, vn or vt that is not a number, whole, within float's range;
 //   - a face (f) with fewer than three corners or more than max_obj_face_corners (1024), and any
 //     index of f, l or p (vertex, texture coordinate or normal: "v/vt/vn", 1-based, or negative
 //     = relative) that is 0, does not exist (so far in the file), or is beyond an int;
-//   - a number on an s, t or vw line that is beyond an int.
+//   - a number on an s, t or vw line that is beyond an int (on a vw line, once rounded to a float).
 inline void check_obj_text(const std::string& text, const std::string& path) {
     if (size_t nul = text.find('\0'); nul != std::string::npos)
         throw scene_error(path + ":" + std::to_string(line_index(text).line_of(nul)) +
@@ -94,11 +95,15 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
     size_t counts[3] = {0, 0, 0}; // v, vt, vn lines so far
     const char* count_names[3] = {"vertex", "texture coordinate", "normal"};
     const char* plural_names[3] = {"vertices", "texture coordinates", "normals"};
-    text_lines lines(text);
-    for (std::string_view text_line; lines.next(text_line);) {
-        std::istringstream line{std::string(text_line)};
+    // Lines as tinyobjloader splits them: at "\n", "\r\n" or a lone "\r".
+    size_t next = 0, number = 0;
+    while (next < text.size()) {
+        const size_t end = std::min(text.find_first_of("\r\n", next), text.size());
+        std::istringstream line{text.substr(next, end - next)};
+        next = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+        ++number;
         auto fail = [&](const std::string& what) {
-            throw scene_error(path + ":" + std::to_string(lines.number()) + ": malformed OBJ file: " + what);
+            throw scene_error(path + ":" + std::to_string(number) + ": malformed OBJ file: " + what);
         };
         std::string keyword;
         if (!(line >> keyword)) continue;
@@ -147,7 +152,11 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
                     char* stop = nullptr;
                     const double x = std::strtod(part.c_str(), &stop);
                     const bool is_number = stop != part.c_str() && stop == part.c_str() + part.size();
-                    if (!obj_int_prefix_fits(part) || (is_number && !(std::fabs(x) <= double(FLT_MAX))))
+                    // A vw line's joint ids are read as floats (of the number at the start of the
+                    // word, whatever follows it), then converted to int: kept well inside an int.
+                    const bool vw_joint_fits = keyword != "vw" || stop == part.c_str() || std::fabs(x) < 2147483000.0;
+                    if (!obj_int_prefix_fits(part) || (is_number && !(std::fabs(x) <= double(FLT_MAX))) ||
+                        !vw_joint_fits)
                         fail("'" + word + "' in a '" + keyword + "' line is out of range (of an int, or of a float)");
                 }
         }

@@ -180,7 +180,8 @@ class xml_scene_reader {
     size_t line_at(ptrdiff_t offset) const { return offset < 0 ? 0 : lines_.line_of(size_t(offset)); }
     [[noreturn]] void fail(node at, const std::string& owner, const std::string& problem) const {
         size_t line = at ? line_at(at.offset_debug()) : 0;
-        throw scene_error(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner + ": " + problem);
+        // Values quoted from the file may hold line breaks (&#10;): the message stays one line.
+        throw scene_error(one_line(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner + ": " + problem));
     }
     static std::string tag(node n) { return "<" + std::string(n.name()) + ">"; }
     // <Name id="N">, or <Name> without an id.
