@@ -20,6 +20,7 @@
 #include <rtweekend/engine/path_tracer.h>
 #include <rtweekend/engine/whitted.h>
 #include <rtweekend/io/scene_file.h>
+#include <rtweekend/io/text_lines.h>
 #include <rtweekend/io/xml_scene.h>
 
 #include <cstdio>
@@ -60,8 +61,8 @@ inline std::vector<std::string> xml_output_paths(const rt::whitted_scene& scene,
         // The loader refuses such names already; a scene built in code reaches here unchecked.
         std::string unsafe = rt::image_name_problem(name);
         if (!unsafe.empty())
-            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name + "' " +
-                                  unsafe);
+            throw rt::scene_error(rt::one_line(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" +
+                                               name + "' " + unsafe));
         std::string path = (dir / name).lexically_normal().string();
         std::string ext = rt::lowercase_extension(path);
         if (ext != ".png" && ext != ".ppm")

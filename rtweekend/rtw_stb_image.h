@@ -28,6 +28,7 @@
 
 #include "io/file.h"
 #include "io/image_header.h"
+#include "io/text_lines.h"
 #include "scene_error.h"
 
 #include <climits>
@@ -204,8 +205,9 @@ inline void rtw_image::decode(const std::string& encoded, const std::string& fil
     }
     if (bytes.empty()) {
         const char* reason = stbi_failure_reason();
+        // stb_image's message may quote bytes of the file (an unknown PNG chunk's type): one line.
         throw scene_error("cannot read image texture '" + filename + "': " +
-                          (reason && *reason ? reason : "not an image stb_image can decode"));
+                          one_line(reason && *reason ? reason : "not an image stb_image can decode"));
     }
     width_ = w;
     height_ = h;

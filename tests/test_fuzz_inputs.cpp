@@ -421,6 +421,29 @@ TEST_CASE("fuzz: a JPEG that starts with fill bytes before its SOI is checked as
                   {"jpeg_fill_dht.jpg", "JPEG Huffman table at byte 7 has 4080 codes"});
 }
 
+TEST_CASE("fuzz: stb_image's messages quote the file's bytes on one line") {
+    // An unknown critical chunk named "G\r\n\x1a": stb_image's message quotes the name.
+    check_refused([] { read_image(fuzz_dir + "png_chunk_type_line_break.png"); },
+                  {"png_chunk_type_line_break.png': PNG G\\x0d\\x0a\\x1a PNG chunk not known"});
+    check_refused([] { rtw_image img((fuzz_dir + "png_chunk_type_line_break.png").c_str()); },
+                  {"G\\x0d\\x0a\\x1a PNG chunk not known"});
+}
+
+TEST_CASE("fuzz: 16-bit PNM textures are refused (stb_image 2.27 reads them wrongly)") {
+    // P5: expanded to RGB by the 8-bit routine, past the end of its buffer (found by the harness).
+    check_refused([] { rtw_image img((fuzz_dir + "pgm16_texture.pgm").c_str()); },
+                  {"pgm16_texture.pgm", "PNM of 16 bits (maxval 525) is not supported as a texture"});
+    // P6: the sample 0x8000 came back as 0 (its bytes read little-endian; found writing this test).
+    check_refused([] { rtw_image().decode(std::string("P6 1 1 65535\n\x80\x00\x00\x00\xff\xff", 19), "rgb16.ppm"); },
+                  {"PNM of 16 bits (maxval 65535)"});
+    // 8-bit PGM still decodes, grey to all three channels.
+    rtw_image grey;
+    grey.decode(std::string("P5 2 1 255\n\x10\x80", 13), "grey.pgm");
+    CHECK(int(grey.pixel_data(1, 0)[0]) == 0x80);
+    CHECK(int(grey.pixel_data(1, 0)[2]) == 0x80);
+    CHECK(int(grey.pixel_data(0, 0)[1]) == 0x10);
+}
+
 TEST_CASE("fuzz: a binary PNM header whose numbers overflow stb_image's int") {
     // stb_image 2.27 adds up the digits in an int (undefined behaviour past 2^31 - 1); before, the
     // wrapped width said "the image image is 0x1".
@@ -491,6 +514,22 @@ TEST_CASE("fuzz: OBJ lines end at a lone carriage return, as tinyobjloader split
     check_refused([] { decode_obj("v 0 0 0\r\nv 1 0 0\rv 0 1 x\n", "n.obj", nullptr); }, {"n.obj:3: "});
 }
 
+TEST_CASE("fuzz: OBJ numbers tinyobjloader would overflow on (an exponent of 3000, 65 digits)") {
+    // tinyobjloader scales by pow(5, exponent): 0e3000 is 0 * inf = NaN, which a vw line then
+    // converted to an int. strtod reads 0e3000 as 0, so the range checks let it through.
+    check_refused([] { load_obj(fuzz_dir + "obj_vw_exponent.obj", nullptr); },
+                  {"obj_vw_exponent.obj:5: malformed OBJ file: '0e3000' in a 'vw' line is out of range"});
+    const std::string tri = "v 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    check_refused([&] { decode_obj("v 0e400 0 0\n" + tri, "e.obj", nullptr); },
+                  {"e.obj:1: ", "'0e400' in a 'v' line has more digits than a number needs"});
+    check_refused([&] { decode_obj("v 0 0 0e99999999999\n" + tri, "i.obj", nullptr); }, {"i.obj:1: ", "'0e99999999999'"});
+    const std::string digits65 = "0." + std::string(63, '0') + "1"; // 65 digits, a tiny number
+    check_refused([&] { decode_obj("v " + digits65 + " 0 0\n" + tri, "d.obj", nullptr); }, {"d.obj:1: "});
+    // At the bounds: 64 digits and an exponent of 300 (here a number of ordinary size) load.
+    const std::string digits64 = "0." + std::string(62, '0') + "1", e300 = "1" + std::string(10, '0') + "e-300";
+    CHECK(decode_obj("v " + digits64 + " " + e300 + " 0e300\n" + tri, "ok.obj", nullptr)->faces.size() == 1);
+}
+
 TEST_CASE("fuzz: Perlin noise far from the origin (the lattice index was an int conversion out of range)") {
     // The noise repeats every 256 cells along each axis: whole multiples of 256 added to a point
     // whose fraction a double keeps exactly give the same value, far beyond an int.
@@ -509,6 +548,14 @@ TEST_CASE("fuzz: Perlin noise far from the origin (the lattice index was an int 
     scene.cam.threads = 1;
     const render_result r = render(scene.cam, scene.world);
     CHECK(r.img.width() == 4);
+}
+
+TEST_CASE("fuzz: an XML ImageName with a line break is refused") {
+    // Before, render wrote a file named "facing<line break>mirrors.png", exit 0.
+    check_refused([] { load_xml_scene(fuzz_dir + "xml_image_name_line_break.xml"); },
+                  {"xml_image_name_line_break.xml:14: <Camera id=\"1\">: <ImageName> 'facing\\x0amirrors.png' has a control character"});
+    CHECK_FALSE(image_name_problem("a\tb.png").empty());
+    CHECK(image_name_problem("caf\xc3\xa9.png").empty()); // UTF-8 is not a control character
 }
 
 TEST_CASE("fuzz: render writes an XML scene's images in the current directory when -o is not given") {

@@ -20,7 +20,9 @@
 //   - both: an image beyond the limits of input_limits.h (sides of 2^24, 2^28 pixels);
 //   - binary PNM (P5, P6; read by stb_image for textures): a width or height above 2^24 or a
 //     maxval above 65535 (stb_image 2.27 accumulates the header's numbers in an int without
-//     checking, which overflows on a long run of digits);
+//     checking, which overflows on a long run of digits), and 16 bits a sample (a maxval above
+//     255): stb_image 2.27 expands 16-bit grey to RGB with its 8-bit routine, reading past its
+//     buffer, and reads 16-bit samples little-endian where the format stores them big-endian;
 //   - JPEG (read by stb_image for textures): a Huffman table (DHT segment) of more than 256 codes.
 //     stb_image 2.27 (Debian 12's) writes such a table's code lengths past the end of its
 //     257-entry array; the segments are walked as stb_image walks them (entropy-coded data is
@@ -203,6 +205,10 @@ inline std::string pnm_header_problem(const std::string& b) {
             if (pos - start > 24) digits += "...";
             return "PNM " + std::string(names[i]) + " " + digits + " is more than " + std::to_string(limits[i]);
         }
+        if (i == 2 && value > 255)
+            return "PNM of 16 bits (maxval " + std::to_string(value) +
+                   ") is not supported as a texture (stb_image 2.27 reads a P5 past its buffer and a P6 with "
+                   "its bytes swapped); convert it to 8 bits or to PNG";
     }
     return {};
 }

@@ -87,7 +87,8 @@ whitted_scene decode_xml_scene(const std::string& text, const std::string& path)
 
 // What is wrong with a camera's ImageName as a file name inside the output directory, "" if
 // nothing: it must be a relative path without a ".." component (and not empty), so that the image
-// lands inside the directory the user chose (render -o DIR), never beside or above it.
+// lands inside the directory the user chose (render -o DIR), never beside or above it; and it may
+// hold no control character (a line break would also split every message that names the file).
 std::string image_name_problem(const std::string& image_name);
 
 // Gives `mesh` area-weighted vertex normals and turns on smooth shading: each vertex's normal is
@@ -100,6 +101,9 @@ void set_smooth_normals(triangle_mesh& mesh);
 
 inline std::string image_name_problem(const std::string& image_name) {
     if (image_name.empty()) return "is empty";
+    for (char c : image_name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            return "has a control character (a line break, say): is the file damaged?";
     // '/' and '\\' both count as separators, so that a name means the same on every system.
     const std::filesystem::path p(image_name);
     if (p.is_absolute() || p.has_root_name() || image_name[0] == '/' || image_name[0] == '\\')
