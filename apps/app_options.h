@@ -147,31 +147,68 @@ inline void print_usage(const description& d, std::FILE* to) {
     std::exit(2);
 }
 
-inline long long parse_integer(const description& d, const std::string& flag, const std::string& text, long long min,
-                               long long max) {
+// Why parse_arguments() gave no options to run with, thrown by it: what parse() prints and the
+// status it exits with. Status 2, a usage error: "app: error: MESSAGE", then the usage, on stderr;
+// status 1, an output path that cannot be written: "app: error: MESSAGE" alone; status 0, --help:
+// the usage on stdout (no message).
+struct parse_stop {
+    int status;
+    std::string message;
+};
+
+namespace detail {
+
+[[noreturn]] inline void stop_parsing(const std::string& message) { throw parse_stop{2, message}; }
+
+inline long long integer_value(const std::string& flag, const std::string& text, long long min, long long max) {
     errno = 0;
     char* end = nullptr;
     long long v = std::strtoll(text.c_str(), &end, 10);
     if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE)
-        usage_error(d, flag + " needs an integer, got '" + text + "'");
+        stop_parsing(flag + " needs an integer, got '" + text + "'");
     if (v < min || v > max)
-        usage_error(d, flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
+        stop_parsing(flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
     return v;
 }
 
-inline double parse_real(const description& d, const std::string& flag, const std::string& text, double min,
-                         double max) {
+inline double real_value(const std::string& flag, const std::string& text, double min, double max) {
     errno = 0;
     char* end = nullptr;
     double v = std::strtod(text.c_str(), &end);
     if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-        usage_error(d, flag + " needs a number, got '" + text + "'");
+        stop_parsing(flag + " needs a number, got '" + text + "'");
     if (v < min || v > max)
-        usage_error(d, flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
+        stop_parsing(flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
     return v;
 }
 
-inline options parse(int argc, char** argv, const description& d) {
+} // namespace detail
+
+// An integer flag's value within [min, max]; a usage error (exit 2) otherwise.
+inline long long parse_integer(const description& d, const std::string& flag, const std::string& text, long long min,
+                               long long max) {
+    try {
+        return detail::integer_value(flag, text, min, max);
+    } catch (const parse_stop& stop) {
+        usage_error(d, stop.message);
+    }
+}
+
+// A real flag's value, finite and within [min, max]; a usage error (exit 2) otherwise.
+inline double parse_real(const description& d, const std::string& flag, const std::string& text, double min,
+                         double max) {
+    try {
+        return detail::real_value(flag, text, min, max);
+    } catch (const parse_stop& stop) {
+        usage_error(d, stop.message);
+    }
+}
+
+// The command line read into options, without printing or exiting: throws parse_stop instead
+// (a usage error, an unwritable output path, or --help). parse() is this for an app's main; a
+// caller that must not exit (the command-line fuzzer) calls it directly.
+inline options parse_arguments(int argc, char** argv, const description& d) {
+    using detail::stop_parsing;
     options o;
     o.program = d.name;
     for (int i = 1; i < argc; ++i) {
@@ -187,70 +224,85 @@ inline options parse(int argc, char** argv, const description& d) {
         }
         auto next = [&]() -> std::string {
             if (has_inline_value) return value;
-            if (i + 1 >= argc) usage_error(d, arg + " needs a value");
+            if (i + 1 >= argc) stop_parsing(arg + " needs a value");
             return argv[++i];
         };
+        auto integer = [&](long long min, long long max) { return detail::integer_value(arg, next(), min, max); };
         constexpr long long max_size = 1 << 16;
         if (arg == "--help" || arg == "-h") {
-            print_usage(d, stdout);
-            std::exit(0);
-        } else if (arg == "--width") o.width = int(parse_integer(d, arg, next(), 1, max_size));
-        else if (arg == "--spp") o.spp = int(parse_integer(d, arg, next(), 1, 1 << 24));
-        else if (arg == "--depth") o.depth = int(parse_integer(d, arg, next(), 1, 1 << 16));
-        else if (arg == "--threads") o.threads = int(parse_integer(d, arg, next(), 0, 1024));
-        else if (arg == "--seed") o.seed = uint64_t(parse_integer(d, arg, next(), 0, INT64_MAX));
-        else if (arg == "--adaptive") o.adaptive = parse_real(d, arg, next(), 0, 1e6);
+            throw parse_stop{0, ""};
+        } else if (arg == "--width") o.width = int(integer(1, max_size));
+        else if (arg == "--spp") o.spp = int(integer(1, 1 << 24));
+        else if (arg == "--depth") o.depth = int(integer(1, 1 << 16));
+        else if (arg == "--threads") o.threads = int(integer(0, 1024));
+        else if (arg == "--seed") o.seed = uint64_t(integer(0, INT64_MAX));
+        else if (arg == "--adaptive") o.adaptive = detail::real_value(arg, next(), 0, 1e6);
         else if (arg == "--estimator") {
             std::string v = next();
             rt::path_estimator e;
-            if (!rt::parse_estimator(v, e)) usage_error(d, "--estimator needs nee, bsdf or mixture, got '" + v + "'");
+            if (!rt::parse_estimator(v, e)) stop_parsing("--estimator needs nee, bsdf or mixture, got '" + v + "'");
             o.estimator = e;
         } else if (arg == "--sampler") {
             std::string v = next();
             rt::sampler_kind k;
             if (!rt::parse_sampler(v, k))
-                usage_error(d, "--sampler needs sobol, stratified or independent, got '" + v + "'");
+                stop_parsing("--sampler needs sobol, stratified or independent, got '" + v + "'");
             o.sampler = k;
         } else if (arg == "--integrator" && d.xml_scenes) {
             std::string v = next();
-            if (v != "path" && v != "whitted") usage_error(d, "--integrator needs path or whitted, got '" + v + "'");
+            if (v != "path" && v != "whitted") stop_parsing("--integrator needs path or whitted, got '" + v + "'");
             o.path_integrator = v == "path";
         } else if (arg == "--bfc" && d.xml_scenes) {
             std::string v = next();
-            if (v != "on" && v != "off") usage_error(d, "--bfc needs on or off, got '" + v + "'");
+            if (v != "on" && v != "off") stop_parsing("--bfc needs on or off, got '" + v + "'");
             o.cull_back_faces = v == "on";
         }
         else if (arg == "-o" || arg == "--output") {
             o.output = next();
-            if (o.output.empty()) usage_error(d, "-o needs a file name");
+            if (o.output.empty()) stop_parsing("-o needs a file name");
         } else if (arg == "--quiet" || arg == "-q") {
-            if (has_inline_value) usage_error(d, "--quiet takes no value");
+            if (has_inline_value) stop_parsing("--quiet takes no value");
             o.quiet = true;
-        } else if (arg.size() > 1 && arg[0] == '-') usage_error(d, "unknown option '" + arg + "'");
+        } else if (arg.size() > 1 && arg[0] == '-') stop_parsing("unknown option '" + arg + "'");
         else o.positional.push_back(arg);
     }
     if (o.positional.size() < d.min_positional || o.positional.size() > d.max_positional)
-        usage_error(d, d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
-                                             : std::string("expected ") + d.operands);
+        stop_parsing(d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
+                                           : std::string("expected ") + d.operands);
     const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
     if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator ||
                                      o.sampler))
-        usage_error(d, "--spp, --depth, --adaptive, --seed, --estimator and --sampler apply to XML scenes only with "
-                       "--integrator path, and --width never does (their files set the resolution)");
-    if (xml && o.width) usage_error(d, "--width does not apply to XML scenes (their files set the resolution)");
-    if (xml && o.path_integrator && o.cull_back_faces) usage_error(d, "--bfc applies to the Whitted integrator only");
-    if (!xml && o.path_integrator) usage_error(d, "--integrator applies to XML scenes only (text scenes are path traced)");
-    if (!xml && o.cull_back_faces) usage_error(d, "--bfc applies to XML scenes only");
+        stop_parsing("--spp, --depth, --adaptive, --seed, --estimator and --sampler apply to XML scenes only with "
+                     "--integrator path, and --width never does (their files set the resolution)");
+    if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
+    if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");
+    if (!xml && o.path_integrator) stop_parsing("--integrator applies to XML scenes only (text scenes are path traced)");
+    if (!xml && o.cull_back_faces) stop_parsing("--bfc applies to XML scenes only");
     if (!o.output.empty() && !xml) {
         // Refuse a bad output path before rendering, not after.
         try {
             rt::check_output_path(o.output);
         } catch (const rt::scene_error& e) {
-            std::fprintf(stderr, "%s: error: %s\n", d.name, e.what());
-            std::exit(1);
+            throw parse_stop{1, e.what()};
         }
     }
     return o;
+}
+
+// The command line read into options; on bad usage, an unwritable output path or --help, prints
+// what parse_stop says (above) and exits with its status.
+inline options parse(int argc, char** argv, const description& d) {
+    try {
+        return parse_arguments(argc, argv, d);
+    } catch (const parse_stop& stop) {
+        if (stop.status == 0) {
+            print_usage(d, stdout);
+            std::exit(0);
+        }
+        if (stop.status == 2) usage_error(d, stop.message);
+        std::fprintf(stderr, "%s: error: %s\n", d.name, stop.message.c_str());
+        std::exit(stop.status);
+    }
 }
 
 // Writes the image where the options say: -o FILE, or a P3 PPM on stdout.

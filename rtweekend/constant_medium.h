@@ -78,7 +78,8 @@ inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, doub
     if (!(std::isfinite(density) && density >= 0))
         throw scene_error("constant_medium density must be finite and non-negative, got " + std::to_string(density));
     phase_function_ = std::make_shared<isotropic>(std::move(tex));
-    if (typeid(*boundary_) == typeid(sphere)) boundary_sphere_ = static_cast<const sphere*>(boundary_.get());
+    const hittable& boundary_object = *boundary_; // typeid of a reference: clang warns on typeid(*pointer)
+    if (typeid(boundary_object) == typeid(sphere)) boundary_sphere_ = static_cast<const sphere*>(boundary_.get());
 }
 
 inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, double density, const color& albedo)

@@ -62,7 +62,11 @@ inline void perlin::generate_perm(int* p) {
 
 inline double perlin::noise(const point3& p) const {
     const double fx = std::floor(p.x()), fy = std::floor(p.y()), fz = std::floor(p.z());
-    const int i = int(fx), j = int(fy), k = int(fz);
+    // The lattice cell's index modulo 256 (only its low 8 bits are used), taken in double: the
+    // book's int(fx) is undefined beyond an int, which a point far from the origin (or a large
+    // noise scale) reaches. The same indices as the book's wherever an int holds fx.
+    auto wrap = [](double f) { return std::isfinite(f) ? int(f - 256.0 * std::floor(f / 256.0)) : 0; };
+    const int i = wrap(fx), j = wrap(fy), k = wrap(fz);
     vec3 c[2][2][2];
     for (int di = 0; di < 2; ++di)
         for (int dj = 0; dj < 2; ++dj)

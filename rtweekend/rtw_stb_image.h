@@ -9,6 +9,7 @@
 //   img.linear(x, y)                 the pixel's linear RGB, what a texture returns
 //   img.linear_pixels()              every pixel's linear RGB, rows top to bottom, shared so that the
 //                                    renderer can keep them alive (engine/texture_table.h)
+//   img.decode(bytes, name)          the same from a file's bytes in memory (name for messages)
 //
 // Where the file is looked for, as in the book: in $RTW_IMAGES if that is set, then the name as
 // given, then images/, ../images/, and so on up to six parents.
@@ -27,6 +28,7 @@
 
 #include "io/file.h"
 #include "io/image_header.h"
+#include "io/text_lines.h"
 #include "scene_error.h"
 
 #include <climits>
@@ -49,6 +51,9 @@ class rtw_image {
     // Reads `filename`: false when it cannot be opened; throws scene_error when it can but is not
     // an image stb_image decodes.
     bool load(const std::string& filename);
+    // Decodes the bytes of an image file already in memory, as load() does the file's; `filename`
+    // names it in messages. Throws scene_error when they are not an image stb_image decodes.
+    void decode(const std::string& encoded, const std::string& filename);
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -92,8 +97,10 @@ double linear_to_srgb(double linear);
 #pragma GCC diagnostic ignored "-Wsign-compare"
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wdouble-promotion"
+#if !defined(__clang__) // a GCC-only warning: clang warns about the pragma itself
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #endif
 #ifndef STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
@@ -121,14 +128,18 @@ namespace detail {
 
 // What is wrong with an encoded image before stb_image may decode it, "" if nothing: the PNG and
 // BMP headers (image_header.h), then, for every format stb_image knows, the size it reads from
-// the header (stbi_info parses headers only) against the limits of input_limits.h.
+// the header (stbi_info parses headers only) against the limits of input_limits.h and against
+// what the file's length can hold (image_data_problem, image_header.h).
 inline std::string stb_input_problem(const std::string& bytes) {
     std::string problem = image_header_problem(bytes);
     if (!problem.empty()) return problem;
     if (bytes.size() > size_t(INT_MAX)) return "the file is larger than stb_image can decode (2 GiB)";
     int w = 0, h = 0, channels = 0;
-    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels))
-        return image_size_problem(uint64_t(w < 0 ? 0 : w), uint64_t(h < 0 ? 0 : h), "the image");
+    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels)) {
+        const uint64_t width = uint64_t(w < 0 ? 0 : w), height = uint64_t(h < 0 ? 0 : h);
+        problem = image_size_problem(width, height, stb_format_name(bytes));
+        return problem.empty() ? image_data_problem(bytes, width, height) : problem;
+    }
     return {}; // not an image stb_image knows: decoding says so
 }
 
@@ -158,7 +169,11 @@ inline rtw_image::rtw_image(const char* image_filename) {
 inline bool rtw_image::load(const std::string& filename) {
     std::error_code ec;
     if (!std::filesystem::exists(filename, ec)) return false;
-    const std::string encoded = read_file(filename, "image texture");
+    decode(read_file(filename, "image texture"), filename);
+    return true;
+}
+
+inline void rtw_image::decode(const std::string& encoded, const std::string& filename) {
     const std::string problem = detail::stb_input_problem(encoded);
     if (!problem.empty()) throw scene_error("cannot read image texture '" + filename + "': " + problem);
     const auto* file = reinterpret_cast<const stbi_uc*>(encoded.data());
@@ -190,15 +205,15 @@ inline bool rtw_image::load(const std::string& filename) {
     }
     if (bytes.empty()) {
         const char* reason = stbi_failure_reason();
+        // stb_image's message may quote bytes of the file (an unknown PNG chunk's type): one line.
         throw scene_error("cannot read image texture '" + filename + "': " +
-                          (reason && *reason ? reason : "not an image stb_image can decode"));
+                          one_line(reason && *reason ? reason : "not an image stb_image can decode"));
     }
     width_ = w;
     height_ = h;
     bytes_ = std::move(bytes);
     linear_ = std::make_shared<const std::vector<float>>(std::move(lin));
     path_ = filename;
-    return true;
 }
 
 inline const unsigned char* rtw_image::pixel_data(int x, int y) const {

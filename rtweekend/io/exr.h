@@ -16,10 +16,13 @@
 //
 // Why OpenEXR and not tinyexr: it is the reference implementation, maintained by the Academy
 // Software Foundation, fuzzed continuously (OSS-Fuzz), and Debian ships it with a CMake config
-// (OpenEXR::OpenEXR). Its C API (OpenEXRCore) reads a header with per-file size limits and
-// without allocating for the pixels, so a claimed size beyond max_image_pixels is refused before
-// anything is allocated for it; its C++ API then decodes every pixel type, compression and tiled
-// layout into float.
+// (OpenEXR::OpenEXR). Files are read by its C API, OpenEXRCore, which reads each header attribute
+// within its declared size, applies per-file size limits and allocates nothing for the pixels
+// until asked: a claimed size beyond max_image_pixels is refused, and every chunk of pixel data is
+// found in the file and its unpacked size checked against the best ratio of its compression,
+// before the image is allocated; then OpenEXRCore decodes every pixel type, compression and
+// scanline or tiled layout into float. (The C++ API, which writes, read headers its own way: it
+// allocated an attribute's declared size, up to 2 GB, before finding the file too short.)
 //
 // The library is optional: CMake defines RTWEEKEND_HAVE_OPENEXR=1 on the rtweekend target when it
 // finds it. Without that define this header still compiles, and both functions throw
@@ -39,7 +42,6 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
-#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/openexr.h>
 
@@ -48,6 +50,7 @@
 #include <cstring>
 #include <exception>
 #include <stdexcept>
+#include <vector>
 #endif
 
 namespace rt {
@@ -102,28 +105,7 @@ private:
     size_t pos_ = 0;
 };
 
-// OpenEXR's C++ input from bytes already in memory (read_file has applied its size limit).
-class exr_string_istream final : public Imf::IStream {
-public:
-    exr_string_istream(const std::string& bytes, const std::string& name) : Imf::IStream(name.c_str()), bytes_(bytes) {}
-    // Returns whether more data follows, as the interface asks; reading past the end throws,
-    // which the library reports as a truncated file.
-    bool read(char c[], int n) override {
-        if (n < 0 || pos_ > bytes_.size() || size_t(n) > bytes_.size() - pos_)
-            throw std::runtime_error("file ends early (it is truncated)");
-        std::memcpy(c, bytes_.data() + pos_, size_t(n));
-        pos_ += size_t(n);
-        return pos_ < bytes_.size();
-    }
-    uint64_t tellg() override { return pos_; }
-    void seekg(uint64_t pos) override { pos_ = pos; }
-
-private:
-    const std::string& bytes_;
-    uint64_t pos_ = 0;
-};
-
-// What the header check of OpenEXRCore reads from: the bytes, and the library's last message.
+// What OpenEXRCore reads from: the bytes, and the library's last message.
 struct exr_core_source {
     const std::string& bytes;
     std::string message;
@@ -159,75 +141,118 @@ inline void exr_core_error(exr_const_context_t ctxt, exr_result_t code, const ch
     if (source->message.empty()) source->message = msg && *msg ? msg : exr_get_error_code_as_string(code);
 }
 
-// What the header check found: the data window and whether the file has R, G, B or only Y.
+// What the header check found: the data window, whether the file has R, G, B or only Y, and how
+// its pixels are stored.
 struct exr_layout {
     int min_x = 0, min_y = 0, width = 0, height = 0;
     bool grey = false;
+    bool tiled = false;
+    exr_compression_t compression = EXR_COMPRESSION_NONE;
 };
 
-// Reads the header of the first part with OpenEXRCore, which allocates only for the header, and
-// checks what decode_exr will need before the C++ library allocates anything for the pixels.
-inline exr_layout check_exr_header(const std::string& bytes, const std::string& name) {
-    auto fail = [&](const std::string& problem) -> void { throw scene_error("cannot read '" + name + "': EXR " + problem); };
-    exr_core_source source{bytes, {}};
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.user_data = &source;
-    init.read_fn = exr_core_read;
-    init.size_fn = exr_core_size;
-    init.error_handler_fn = exr_core_error;
-    // Per-file limits (not the library's global defaults, which other code may own). The sides
-    // are limited here, their product below.
-    init.max_image_width = int(max_image_side);
-    init.max_image_height = int(max_image_side);
-    init.max_tile_width = int(max_image_side);
-    init.max_tile_height = int(max_image_side);
+// An OpenEXRCore read context over bytes in memory, finished at scope exit. Errors throw
+// "cannot read 'NAME': EXR WHAT: the library's message".
+class exr_core_reader {
+  public:
+    exr_core_reader(const std::string& bytes, const std::string& name) : source_{bytes, {}}, name_(name) {
+        exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+        init.user_data = &source_;
+        init.read_fn = exr_core_read;
+        init.size_fn = exr_core_size;
+        init.error_handler_fn = exr_core_error;
+        // Per-file limits (not the library's global defaults, which other code may own). The
+        // sides are limited here, their product by check_exr_header.
+        init.max_image_width = int(max_image_side);
+        init.max_image_height = int(max_image_side);
+        init.max_tile_width = int(max_image_side);
+        init.max_tile_height = int(max_image_side);
+        check(exr_start_read(&ctxt_, name.c_str(), &init), "header cannot be read");
+    }
+    ~exr_core_reader() {
+        if (ctxt_) exr_finish(&ctxt_);
+    }
+    exr_core_reader(const exr_core_reader&) = delete;
+    exr_core_reader& operator=(const exr_core_reader&) = delete;
 
-    exr_context_t ctxt = nullptr;
-    exr_result_t rv = exr_start_read(&ctxt, name.c_str(), &init);
-    // The context is closed on every path out, error or not.
-    struct closer {
-        exr_context_t& c;
-        ~closer() {
-            if (c) exr_finish(&c);
+    exr_context_t context() const { return ctxt_; }
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw scene_error("cannot read '" + name_ + "': EXR " + problem);
+    }
+    void check(exr_result_t r, const std::string& what) {
+        if (r == EXR_ERR_SUCCESS) { // the library may have reported a problem it then tolerated
+            source_.message.clear();
+            return;
         }
-    } close_context{ctxt};
-    auto check = [&](exr_result_t r, const char* what) {
-        if (r != EXR_ERR_SUCCESS)
-            fail(std::string(what) + ": " + exr_one_line(source.message.empty() ? exr_get_error_code_as_string(r) : source.message));
-    };
-    check(rv, "header cannot be read");
+        const std::string message = source_.message.empty() ? exr_get_error_code_as_string(r) : source_.message;
+        source_.message.clear();
+        fail(what + ": " + exr_one_line(message));
+    }
 
+  private:
+    exr_core_source source_;
+    std::string name_;
+    exr_context_t ctxt_ = nullptr;
+};
+
+// Reads the header of the first part and checks what decode_exr will need before anything is
+// allocated for the pixels: a data window within the limits, R, G and B (or Y) channels, not
+// subsampled, not deep data.
+inline exr_layout check_exr_header(exr_core_reader& exr) {
+    exr_context_t ctxt = exr.context();
     exr_storage_t storage{};
-    check(exr_get_storage(ctxt, 0, &storage), "header has no storage type");
+    exr.check(exr_get_storage(ctxt, 0, &storage), "header has no storage type");
     if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
-        fail("file holds deep data (several samples a pixel), which cannot be read as an image");
+        exr.fail("file holds deep data (several samples a pixel), which cannot be read as an image");
 
     exr_attr_box2i_t dw{};
-    check(exr_get_data_window(ctxt, 0, &dw), "header has no data window");
+    exr.check(exr_get_data_window(ctxt, 0, &dw), "header has no data window");
     // 64-bit arithmetic: a hostile window's corners can be anywhere in int32.
     const int64_t w = int64_t(dw.max.x) - int64_t(dw.min.x) + 1, h = int64_t(dw.max.y) - int64_t(dw.min.y) + 1;
     if (w <= 0 || h <= 0)
-        fail("data window " + std::to_string(dw.min.x) + "," + std::to_string(dw.min.y) + " .. " + std::to_string(dw.max.x) +
-             "," + std::to_string(dw.max.y) + " is empty");
+        exr.fail("data window " + std::to_string(dw.min.x) + "," + std::to_string(dw.min.y) + " .. " +
+                 std::to_string(dw.max.x) + "," + std::to_string(dw.max.y) + " is empty");
     try {
         check_image_size(uint64_t(w), uint64_t(h), "EXR image");
     } catch (const scene_error& e) {
-        throw scene_error("cannot read '" + name + "': " + e.what());
+        exr.fail(std::string(e.what()).substr(4)); // "EXR image is ..." without its "EXR "
     }
 
     const exr_attr_chlist_t* channels = nullptr;
-    check(exr_get_channels(ctxt, 0, &channels), "header has no channel list");
+    exr.check(exr_get_channels(ctxt, 0, &channels), "header has no channel list");
     bool r = false, g = false, b = false, y = false;
     for (int i = 0; channels && i < channels->num_channels; ++i) {
         const exr_attr_chlist_entry_t& c = channels->entries[i];
         const std::string channel(c.name.str ? c.name.str : "", c.name.str ? size_t(c.name.length) : 0);
         const bool wanted = channel == "R" || channel == "G" || channel == "B" || channel == "Y";
         if (wanted && (c.x_sampling != 1 || c.y_sampling != 1))
-            fail("channel " + channel + " is subsampled, which is not supported");
+            exr.fail("channel " + channel + " is subsampled, which is not supported");
         r |= channel == "R", g |= channel == "G", b |= channel == "B", y |= channel == "Y";
     }
-    if (!(r && g && b) && !y) fail("file has neither R, G and B channels nor a Y (luminance) channel");
-    return {dw.min.x, dw.min.y, int(w), int(h), !(r && g && b)};
+    if (!(r && g && b) && !y) exr.fail("file has neither R, G and B channels nor a Y (luminance) channel");
+    exr_layout layout{dw.min.x, dw.min.y, int(w), int(h), !(r && g && b), storage == EXR_STORAGE_TILED};
+    exr.check(exr_get_compression(ctxt, 0, &layout.compression), "header has no compression");
+    return layout;
+}
+
+// The most bytes one byte of a chunk can unpack to in each compression, so that a chunk whose
+// header claims more is refused before anything is allocated for it: none 1; RLE 64 (a run of at
+// most 128 equal bytes in 2); ZIP, ZIPS and PIZ 1032 (deflate's best ratio; PIZ's Huffman code with
+// runs reaches about 410); PXR24 1376 (deflate over floats cut to 24 bits); B44 and B44A 11 (a 4x4
+// block of halves, 32 bytes, in 14, or 3 when flat); DWAA and DWAB 66048 (lossy: a flat 8x8 block's
+// 63 AC coefficients are one 2-byte end-of-block code, deflated). Unknown compressions: the library
+// refuses them when it decodes.
+inline uint64_t exr_best_ratio(exr_compression_t compression) {
+    switch (compression) {
+    case EXR_COMPRESSION_NONE: return 1;
+    case EXR_COMPRESSION_RLE: return 64;
+    case EXR_COMPRESSION_ZIPS:
+    case EXR_COMPRESSION_ZIP:
+    case EXR_COMPRESSION_PIZ: return 1032;
+    case EXR_COMPRESSION_PXR24: return 1376;
+    case EXR_COMPRESSION_B44:
+    case EXR_COMPRESSION_B44A: return 11;
+    default: return 66048;
+    }
 }
 
 } // namespace detail
@@ -262,39 +287,100 @@ inline std::string encode_exr(const image& img, const std::string& name) {
 }
 
 inline image decode_exr(const std::string& bytes, const std::string& name) {
-    const detail::exr_layout layout = detail::check_exr_header(bytes, name);
+    detail::exr_core_reader exr(bytes, name);
+    const detail::exr_layout layout = detail::check_exr_header(exr);
+    exr_context_t ctxt = exr.context();
+
+    // Every chunk of the image (scanline blocks, or the tiles of level 0), found and checked before
+    // the image is allocated: its place in the file (OpenEXRCore checks the offset table and the
+    // chunk's header against the file's size) and its unpacked size against its packed size.
+    int32_t chunk_count = 0;
+    exr.check(exr_get_chunk_count(ctxt, 0, &chunk_count), "header gives no chunk count");
+    if (chunk_count <= 0 || uint64_t(chunk_count) * 8 > bytes.size())
+        exr.fail("header promises " + std::to_string(chunk_count) + " chunks of pixels, whose offsets alone need " +
+                 std::to_string(uint64_t(chunk_count < 0 ? 0 : chunk_count) * 8) + " bytes; the file has " +
+                 std::to_string(bytes.size()));
+    std::vector<exr_chunk_info_t> chunks;
+    auto add = [&](exr_result_t r, const exr_chunk_info_t& chunk) {
+        exr.check(r, "chunk " + std::to_string(chunks.size()) + " cannot be read");
+        const uint64_t ratio = detail::exr_best_ratio(layout.compression);
+        if (chunk.unpacked_size / ratio > chunk.packed_size)
+            exr.fail("chunk " + std::to_string(chunks.size()) + " holds " + std::to_string(chunk.packed_size) +
+                     " bytes, which cannot unpack to the " + std::to_string(chunk.unpacked_size) +
+                     " its pixels need (at most " + std::to_string(ratio) + " bytes a byte in its compression)");
+        chunks.push_back(chunk);
+    };
+    exr_chunk_info_t chunk{};
+    if (layout.tiled) {
+        int32_t level_w = 0, level_h = 0, tw = 0, th = 0;
+        exr.check(exr_get_level_sizes(ctxt, 0, 0, 0, &level_w, &level_h), "header gives no level size");
+        exr.check(exr_get_tile_sizes(ctxt, 0, 0, 0, &tw, &th), "header gives no tile size");
+        if (tw <= 0 || th <= 0 || level_w <= 0 || level_h <= 0) exr.fail("header gives an empty tile or level");
+        const int32_t tiles_x = int32_t((int64_t(level_w) + tw - 1) / tw), tiles_y = int32_t((int64_t(level_h) + th - 1) / th);
+        if (int64_t(tiles_x) * int64_t(tiles_y) > chunk_count)
+            exr.fail("level 0 has " + std::to_string(int64_t(tiles_x) * int64_t(tiles_y)) + " tiles, more than the " +
+                     std::to_string(chunk_count) + " chunks of the file");
+        for (int32_t ty = 0; ty < tiles_y; ++ty)
+            for (int32_t tx = 0; tx < tiles_x; ++tx) add(exr_read_tile_chunk_info(ctxt, 0, tx, ty, 0, 0, &chunk), chunk);
+    } else {
+        int32_t lines = 0;
+        exr.check(exr_get_scanlines_per_chunk(ctxt, 0, &lines), "header gives no scanlines per chunk");
+        if (lines <= 0) exr.fail("header gives " + std::to_string(lines) + " scanlines per chunk");
+        for (int64_t y = layout.min_y; y < int64_t(layout.min_y) + layout.height; y += lines)
+            add(exr_read_scanline_chunk_info(ctxt, 0, int(y), &chunk), chunk);
+    }
+
     image out(layout.width, layout.height);
-    try {
-        detail::exr_string_istream in(bytes, name);
-        Imf::InputFile file(in);
-        const Imath::Box2i dw = file.header().dataWindow();
-        // The C++ library read the same header; a mismatch would mean a different part or a bug.
-        if (dw.min.x != layout.min_x || dw.min.y != layout.min_y || dw.max.x - dw.min.x + 1 != layout.width ||
-            dw.max.y - dw.min.y + 1 != layout.height)
-            throw scene_error("cannot read '" + name + "': EXR headers disagree about the data window");
-        char* base = reinterpret_cast<char*>(out.data().data());
-        const size_t x_stride = 3 * sizeof(float), y_stride = x_stride * size_t(layout.width);
-        Imf::FrameBuffer fb;
-        // Slice::Make offsets the pointer by the window's origin, so pixel (min.x, min.y) lands at
-        // the image's first pixel.
-        if (layout.grey) {
-            fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, base, dw, x_stride, y_stride));
-        } else {
-            fb.insert("R", Imf::Slice::Make(Imf::FLOAT, base, dw, x_stride, y_stride));
-            fb.insert("G", Imf::Slice::Make(Imf::FLOAT, base + sizeof(float), dw, x_stride, y_stride));
-            fb.insert("B", Imf::Slice::Make(Imf::FLOAT, base + 2 * sizeof(float), dw, x_stride, y_stride));
+    // OpenEXRCore decodes each chunk straight into the image, converting half and uint to float;
+    // other channels (alpha, depth, ...) are skipped.
+    struct pipeline {
+        exr_context_t ctxt;
+        exr_decode_pipeline_t decode{}; // EXR_DECODE_PIPELINE_INITIALIZER, without its warning
+        bool started = false;
+        ~pipeline() {
+            if (started) exr_decoding_destroy(ctxt, &decode);
         }
-        file.setFrameBuffer(fb);
-        // A file cut short, or with damaged chunks, throws here rather than leaving black rows.
-        file.readPixels(dw.min.y, dw.max.y);
-    } catch (const scene_error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw scene_error("cannot read '" + name + "': EXR " + detail::exr_one_line(e.what()));
+    } p{ctxt};
+    float* const pixels = out.data().data();
+    const size_t line_stride = size_t(layout.width) * 3 * sizeof(float);
+    int32_t tile_w = 0, tile_h = 0;
+    if (layout.tiled) exr.check(exr_get_tile_sizes(ctxt, 0, 0, 0, &tile_w, &tile_h), "header gives no tile size");
+    for (size_t i = 0; i < chunks.size(); ++i) {
+        const exr_chunk_info_t& c = chunks[i];
+        const std::string what = "chunk " + std::to_string(i) + " cannot be decoded";
+        if (!p.started) {
+            exr.check(exr_decoding_initialize(ctxt, 0, &c, &p.decode), what);
+            p.started = true;
+        } else {
+            exr.check(exr_decoding_update(ctxt, 0, &c, &p.decode), what);
+        }
+        // The chunk's first pixel in the image: tiles are numbered, scanline chunks start at a row.
+        const int64_t x0 = layout.tiled ? int64_t(c.start_x) * tile_w : 0;
+        const int64_t y0 = layout.tiled ? int64_t(c.start_y) * tile_h : int64_t(c.start_y) - layout.min_y;
+        if (x0 < 0 || y0 < 0 || x0 + c.width > layout.width || y0 + c.height > layout.height)
+            exr.fail("chunk " + std::to_string(i) + " lies outside the data window");
+        for (int16_t k = 0; k < p.decode.channel_count; ++k) {
+            exr_coding_channel_info_t& channel = p.decode.channels[k];
+            const std::string channel_name = channel.channel_name ? channel.channel_name : "";
+            int offset = channel_name == "R" ? 0 : channel_name == "G" ? 1 : channel_name == "B" ? 2 : -1;
+            if (layout.grey) offset = channel_name == "Y" ? 0 : -1;
+            if (offset < 0) {
+                channel.decode_to_ptr = nullptr;
+                continue;
+            }
+            channel.decode_to_ptr = reinterpret_cast<uint8_t*>(pixels + (size_t(y0) * size_t(layout.width) + size_t(x0)) * 3 +
+                                                               size_t(offset));
+            channel.user_pixel_stride = int32_t(3 * sizeof(float));
+            channel.user_line_stride = int32_t(line_stride);
+            channel.user_data_type = EXR_PIXEL_FLOAT;
+            channel.user_bytes_per_element = int16_t(sizeof(float));
+        }
+        exr.check(exr_decoding_choose_default_routines(ctxt, 0, &p.decode), what);
+        exr.check(exr_decoding_run(ctxt, 0, &p.decode), what);
     }
     if (layout.grey) {
-        float* p = out.data().data();
-        for (size_t i = 0; i < out.data().size(); i += 3) p[i + 1] = p[i + 2] = p[i];
+        float* q = out.data().data();
+        for (size_t i = 0; i < out.data().size(); i += 3) q[i + 1] = q[i + 2] = q[i];
     }
     return out;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// image_header: what a PNG or BMP file's headers promise, checked before stb_image decodes it.
+// image_header: what a PNG, BMP or JPEG file's headers promise, checked before stb_image decodes it.
 //
 //   std::string problem = image_header_problem(bytes);   // "" when the headers are sound
 //
@@ -14,23 +14,49 @@
 //     offset inside the headers, and pixel data (rows padded to 4 bytes) that the file is too short
 //     to hold;
 //   - PNG: a first chunk that is not a 13-byte IHDR, a width or height of 0, any chunk whose length
-//     runs past the end of the file (or is above 2^31 - 1, the format's own limit), and a file that
-//     ends without IEND;
-//   - both: an image beyond the limits of input_limits.h (sides of 2^24, 2^28 pixels).
-// Other formats (JPEG, TGA, HDR, PNM textures) are left to stb_image; their size is checked by
-// the caller through stbi_info before decoding (rtw_stb_image.h).
+//     runs past the end of the file (or is above 2^31 - 1, the format's own limit), a file that
+//     ends without IEND, and image data (IDAT chunks) too short to inflate to the rows the IHDR
+//     describes even at deflate's best ratio, 1032:1;
+//   - both: an image beyond the limits of input_limits.h (sides of 2^24, 2^28 pixels);
+//   - binary PNM (P5, P6; read by stb_image for textures): a width or height above 2^24 or a
+//     maxval above 65535 (stb_image 2.27 accumulates the header's numbers in an int without
+//     checking, which overflows on a long run of digits), and 16 bits a sample (a maxval above
+//     255): stb_image 2.27 expands 16-bit grey to RGB with its 8-bit routine, reading past its
+//     buffer, and reads 16-bit samples little-endian where the format stores them big-endian;
+//   - JPEG (read by stb_image for textures): a Huffman table (DHT segment) of more than 256 codes.
+//     stb_image 2.27 (Debian 12's) writes such a table's code lengths past the end of its
+//     257-entry array; the segments are walked as stb_image walks them (entropy-coded data is
+//     skipped to the next marker), so every table it would build is checked first.
+// Other formats (JPEG, TGA, HDR, PNM textures) are left to stb_image, whose stbi_info reads their
+// size; the caller checks that size (rtw_stb_image.h) against the limits and against
+//
+//   std::string problem = image_data_problem(bytes, width, height);
+//
+// which refuses a file too short to hold that many pixels in the densest form its format has:
+// JPEG one bit per 8x8 block (512 pixels a byte), Radiance HDR runs of 127 pixels in 8 bytes
+// (16 pixels a byte), TGA runs of 128 pixels in a 1-byte header and one pixel (or a byte per
+// pixel component uncompressed), binary PNM a byte per sample. stb_image allocates what the header
+// describes, then reads missing data as zeros (JPEG, TGA) or fails only after allocating: without
+// this, a 38-byte TGA claiming 770x65528 pixels took 750 MB and seconds to decode.
 
 #include "input_limits.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <string>
 
 namespace rt {
 
-// What is wrong with the headers of the PNG or BMP file `bytes`; "" when nothing is, or when it is
-// neither a PNG nor a BMP file.
+// What is wrong with the headers of the PNG, BMP, JPEG or binary PNM file `bytes`; "" when
+// nothing is, or when it is none of these.
 std::string image_header_problem(const std::string& bytes);
+
+// What is wrong with a JPEG, Radiance HDR, TGA or binary PNM file `bytes` whose header says it is
+// width x height pixels: "" when the file is long enough to hold them (see the top), or when it is
+// none of these formats (PNG and BMP are image_header_problem's).
+std::string image_data_problem(const std::string& bytes, uint64_t width, uint64_t height);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -106,9 +132,18 @@ inline std::string bmp_header_problem(const std::string& b) {
     return {};
 }
 
+// A w x h image in `format` needs at least `need` bytes of data in its densest form (`densest`
+// says what that is), and the file has `have` (`where`: " after its headers", say).
+inline std::string too_short_problem(const char* format, uint64_t w, uint64_t h, uint64_t need, uint64_t have,
+                                     const std::string& densest, const char* where = "") {
+    return std::string(format) + " image of " + std::to_string(w) + "x" + std::to_string(h) + " pixels needs at least " +
+           std::to_string(need) + " bytes of data (" + densest + "), the file has " + std::to_string(have) + where;
+}
+
 inline std::string png_header_problem(const std::string& b) {
     size_t pos = 8; // after the signature
     bool first = true;
+    uint64_t width = 0, height = 0, bits_per_pixel = 0, data_bytes = 0;
     while (true) {
         if (b.size() - pos < 12) // length, type and CRC of a chunk
             return pos == b.size() ? "PNG file ends without an IEND chunk (it is truncated)"
@@ -122,20 +157,222 @@ inline std::string png_header_problem(const std::string& b) {
                    " bytes long, past the end of the file (" + std::to_string(b.size()) + " bytes)";
         if (first) {
             if (type != "IHDR" || length != 13) return "PNG file does not start with a 13-byte IHDR chunk";
-            std::string size = image_size_problem(header_u32_be(b, pos + 8), header_u32_be(b, pos + 12), "PNG");
+            width = header_u32_be(b, pos + 8);
+            height = header_u32_be(b, pos + 12);
+            std::string size = image_size_problem(width, height, "PNG");
             if (!size.empty()) return size;
+            // Samples a pixel by colour type (grey, -, RGB, palette, grey + alpha, -, RGBA); an
+            // unknown type is stb_image's to refuse.
+            static const uint64_t samples[7] = {1, 0, 3, 1, 2, 0, 4};
+            const unsigned depth = static_cast<unsigned char>(b[pos + 16]), colour = static_cast<unsigned char>(b[pos + 17]);
+            bits_per_pixel = colour < 7 ? samples[colour] * depth : 0;
             first = false;
         }
+        if (type == "IDAT") data_bytes += length;
         pos += size_t(12 + length);
-        if (type == "IEND") return {};
+        if (type == "IEND") break;
     }
+    // Deflate stores at most 1032 bytes in one (a 258-byte match in under 2 bits); the rows hold a
+    // filter byte each (interlaced images hold more). Sides are at most 2^24 and bits_per_pixel at
+    // most 64, so nothing here overflows.
+    const uint64_t rows = height * (1 + (width * bits_per_pixel + 7) / 8), need = (rows + 1031) / 1032;
+    if (bits_per_pixel > 0 && data_bytes < need)
+        return too_short_problem("PNG", width, height, need, data_bytes,
+                                 std::to_string(rows) + " bytes of rows deflated at the best ratio, 1032:1",
+                                 " in its IDAT chunks");
+    return {};
+}
+
+// The width, height and maxval of a P5 or P6 file, read as stb_image reads them (whitespace and
+// '#' comments between), checked before stb_image adds up their digits in an int.
+inline std::string pnm_header_problem(const std::string& b) {
+    auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; };
+    const char* names[3] = {"width", "height", "maxval"};
+    const uint64_t limits[3] = {max_image_side, max_image_side, 65535};
+    size_t pos = 2;
+    for (int i = 0; i < 3; ++i) {
+        for (;;) {
+            while (pos < b.size() && space(b[pos])) ++pos;
+            if (pos >= b.size() || b[pos] != '#') break;
+            while (pos < b.size() && b[pos] != '\n' && b[pos] != '\r') ++pos;
+        }
+        const size_t start = pos;
+        uint64_t value = 0;
+        for (; pos < b.size() && b[pos] >= '0' && b[pos] <= '9'; ++pos)
+            if (value <= limits[i]) value = value * 10 + uint64_t(b[pos] - '0');
+        if (value > limits[i]) {
+            std::string digits = b.substr(start, std::min<size_t>(pos - start, 24));
+            if (pos - start > 24) digits += "...";
+            return "PNM " + std::string(names[i]) + " " + digits + " is more than " + std::to_string(limits[i]);
+        }
+        if (i == 2 && value > 255)
+            return "PNM of 16 bits (maxval " + std::to_string(value) +
+                   ") is not supported as a texture (stb_image 2.27 reads a P5 past its buffer and a P6 with "
+                   "its bytes swapped); convert it to 8 bits or to PNG";
+    }
+    return {};
+}
+
+// Where a JPEG file's data starts after its SOI marker, as stb_image finds it (any number of 0xff
+// bytes, then 0xd8); 0 when the file does not start so.
+inline size_t jpeg_after_soi(const std::string& b) {
+    size_t pos = 0;
+    while (pos < b.size() && static_cast<unsigned char>(b[pos]) == 0xff) ++pos;
+    return pos >= 1 && pos < b.size() && static_cast<unsigned char>(b[pos]) == 0xd8 ? pos + 1 : 0;
+}
+
+inline std::string jpeg_header_problem(const std::string& b) {
+    auto at = [&](size_t i) { return static_cast<unsigned char>(b[i]); };
+    const size_t size = b.size();
+    size_t pos = jpeg_after_soi(b);
+    while (pos < size) {
+        // A marker: 0xff (fill bytes 0xff may repeat), then its code; stb_image skips other bytes
+        // between segments.
+        if (at(pos) != 0xff) {
+            ++pos;
+            continue;
+        }
+        while (pos < size && at(pos) == 0xff) ++pos;
+        if (pos >= size) break;
+        const unsigned marker = at(pos++);
+        if (marker == 0xd9) break;                                                     // EOI
+        if (marker == 0x00 || marker == 0x01 || marker == 0xd8 || (marker >= 0xd0 && marker <= 0xd7)) continue; // no length
+        if (size - pos < 2) break;
+        const size_t length = size_t(at(pos)) << 8 | at(pos + 1);
+        if (marker == 0xc4) { // DHT: tables of a class/id byte, 16 code counts, then the codes
+            // stb_image reads each table's codes even where they run past the segment's length,
+            // and reads zeros past the end of the file.
+            ptrdiff_t left = ptrdiff_t(length) - 2;
+            size_t table = pos + 2;
+            while (left > 0 && table < size) {
+                unsigned codes = 0;
+                for (size_t i = table + 1; i <= table + 16 && i < size; ++i) codes += at(i);
+                if ((at(table) >> 4) > 1 || (at(table) & 15) > 3) break; // stb_image refuses the table
+                if (codes > 256)
+                    return "JPEG Huffman table at byte " + std::to_string(table) + " has " + std::to_string(codes) +
+                           " codes, more than 256 (the file is damaged)";
+                left -= ptrdiff_t(17 + codes);
+                table += 17 + codes;
+                if (table > size) break;
+            }
+        }
+        if (length < 2) break;
+        pos += length;
+        if (marker == 0xda) { // SOS: entropy-coded data up to the next marker (0xff 0x00 is a data byte, RSTn is inside)
+            while (pos < size) {
+                if (at(pos) != 0xff) {
+                    ++pos;
+                    continue;
+                }
+                size_t next = pos;
+                while (next < size && at(next) == 0xff) ++next;
+                if (next < size && at(next) != 0x00 && !(at(next) >= 0xd0 && at(next) <= 0xd7)) break; // a marker at pos
+                pos = next + 1;
+            }
+        }
+    }
+    return {};
+}
+
+// A Radiance HDR file's run-length encoded scanlines, walked as stb_image 2.27 decodes them: it
+// loops for ever on a count of 0, which is also what it reads past the end of the file, so a
+// truncated file hung it. The header is lines up to an empty one, then the resolution line; a
+// scanline is "2 2", its width in 2 bytes, then each of the 4 components as runs (a count above
+// 128, then one byte) and literals (a count, then that many bytes). Widths below 8 or above 32767,
+// and a scanline that does not start "2 2", are stored flat, which stb_image reads to the end.
+inline std::string hdr_rle_problem(const std::string& b, uint64_t w, uint64_t h) {
+    if (w < 8 || w > 32767) return {};
+    size_t pos = b.find('\n');
+    // stb_image reads header lines of at most 1023 characters; a longer one is cut and the rest of
+    // it skipped, which ends at the same '\n'.
+    while (pos != std::string::npos && pos + 1 < b.size() && b[pos + 1] != '\n') pos = b.find('\n', pos + 1);
+    if (pos == std::string::npos || pos + 1 >= b.size()) return {}; // no empty line: stb_image refuses it
+    pos = b.find('\n', pos + 2);                                    // the resolution line
+    if (pos == std::string::npos) return {};
+    ++pos;
+    auto byte = [&](size_t i) -> unsigned { return i < b.size() ? static_cast<unsigned char>(b[i]) : 0u; };
+    for (uint64_t row = 0; row < h; ++row) {
+        if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) return {}; // flat from here on
+        if ((uint64_t(byte(pos + 2)) << 8 | byte(pos + 3)) != w) return {};          // stb_image refuses it
+        pos += 4;
+        for (int component = 0; component < 4; ++component) {
+            for (uint64_t i = 0; i < w;) {
+                unsigned count = byte(pos++);
+                if (count > 128) {
+                    count -= 128;
+                    ++pos;
+                } else {
+                    if (count == 0)
+                        return "HDR scanline " + std::to_string(row) + " has a run-length count of 0 at byte " +
+                               std::to_string(pos - 1) +
+                               (pos - 1 >= b.size() ? " (the file ends there: it is truncated)" : "");
+                    pos += count;
+                }
+                if (count > w - i) return {}; // stb_image refuses it
+                i += count;
+            }
+        }
+    }
+    return {};
+}
+
+// The name of a format stb_image reads, from the file's first bytes ("TGA" when it is none of the
+// others: TGA has no magic number), for messages.
+inline const char* stb_format_name(const std::string& b) {
+    auto starts_with = [&](const char* magic) { return b.compare(0, std::strlen(magic), magic) == 0; };
+    if (starts_with("\x89PNG")) return "PNG";
+    if (starts_with("BM")) return "BMP";
+    if (jpeg_after_soi(b)) return "JPEG";
+    if (starts_with("#?RADIANCE") || starts_with("#?RGBE")) return "HDR";
+    if (starts_with("P5") || starts_with("P6")) return "PNM";
+    return "TGA";
 }
 
 } // namespace detail
 
+inline std::string image_data_problem(const std::string& b, uint64_t w, uint64_t h) {
+    using detail::too_short_problem;
+    // Sides are at most 2^24 here (the caller checked), so products of a few of them fit.
+    const uint64_t pixels = w * h, size = b.size();
+    auto starts_with = [&](const char* magic) { return b.compare(0, std::strlen(magic), magic) == 0; };
+    if (starts_with("\x89PNG") || starts_with("BM")) return {};
+    if (detail::jpeg_after_soi(b)) {
+        const uint64_t need = (pixels + 511) / 512;
+        return size < need ? too_short_problem("JPEG", w, h, need, size, "one bit per 8x8 block") : std::string();
+    }
+    if (starts_with("#?RADIANCE") || starts_with("#?RGBE")) {
+        const uint64_t need = (pixels + 15) / 16;
+        if (size < need) return too_short_problem("HDR", w, h, need, size, "runs of 127 pixels in 8 bytes");
+        return detail::hdr_rle_problem(b, w, h);
+    }
+    if (starts_with("P5") || starts_with("P6")) {
+        const uint64_t need = pixels * (b[1] == '6' ? 3 : 1);
+        return size < need ? too_short_problem("PNM", w, h, need, size, "a byte per sample") : std::string();
+    }
+    // Otherwise TGA, the one format stb_image knows without a magic number: an 18-byte header, an
+    // image ID, a colour map, then the pixels, run-length encoded in image types 9 to 11.
+    if (size < 18) return {};
+    const unsigned type = static_cast<unsigned char>(b[2]), bits = static_cast<unsigned char>(b[16]);
+    const uint64_t map_bytes = static_cast<unsigned char>(b[1]) == 0
+                                   ? 0
+                                   : detail::header_u16_le(b, 5) * ((static_cast<unsigned char>(b[7]) + 7u) / 8u);
+    const uint64_t header = 18 + static_cast<unsigned char>(b[0]) + map_bytes, pixel_bytes = (bits + 7) / 8;
+    const uint64_t data = size > header ? size - header : 0;
+    const bool rle = (type & 8) != 0;
+    const uint64_t need = rle ? (pixels + 127) / 128 * (1 + pixel_bytes) : pixels * pixel_bytes;
+    if (data < need)
+        return too_short_problem("TGA", w, h, need, data,
+                                 rle ? "runs of 128 pixels in a header byte and one pixel" : "uncompressed pixels",
+                                 " after its headers");
+    return {};
+}
+
 inline std::string image_header_problem(const std::string& bytes) {
     if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return detail::png_header_problem(bytes);
     if (bytes.size() >= 2 && bytes[0] == 'B' && bytes[1] == 'M') return detail::bmp_header_problem(bytes);
+    if (detail::jpeg_after_soi(bytes)) return detail::jpeg_header_problem(bytes);
+    if (bytes.size() >= 2 && (bytes.compare(0, 2, "P5") == 0 || bytes.compare(0, 2, "P6") == 0))
+        return detail::pnm_header_problem(bytes);
     return {};
 }
 

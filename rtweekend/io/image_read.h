@@ -32,6 +32,7 @@
 #include "../scene_error.h"
 #include "exr.h"
 #include "file.h"
+#include "text_lines.h"
 
 #include <cerrno>
 #include <charconv>
@@ -292,7 +293,8 @@ inline loaded_image decode_with_stb(const std::string& bytes, const std::string&
                                                &h, &channels_in_file, 3);
     if (!rgb) {
         const char* reason = stbi_failure_reason();
-        read_error(name, std::string(format) + " " + (reason && *reason ? reason : "cannot be decoded"));
+        // stb_image's message may quote bytes of the file (an unknown chunk's type): one line.
+        read_error(name, std::string(format) + " " + one_line(reason && *reason ? reason : "cannot be decoded"));
     }
     loaded_image out{image(w, h), true, format};
     std::vector<float>& dst = out.pixels.data();

@@ -27,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <tiny_obj_loader.h>
@@ -40,6 +41,9 @@ class material;
 // with fewer than three corners or more than 1024, an index out of range, a NUL byte, or a file
 // without faces (detail::check_obj_text lists every check).
 std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat);
+
+// load_obj on a file's text already in memory; `path` names it in messages.
+std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path, std::shared_ptr<material> mat);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -73,16 +77,38 @@ inline bool obj_float_fits(const std::string& word) {
     return stop != word.c_str() && stop == word.c_str() + word.size() && std::fabs(x) <= double(FLT_MAX);
 }
 
+// Whether tinyobjloader reads the number at the start of `word` without overflowing: it adds up
+// the mantissa's digits in a double and the exponent's in an int, then scales by pow(5, exponent),
+// so 400 digits make an infinite mantissa, e500 an infinite power (0e500 is NaN), and ten exponent
+// digits overflow the int. At most 64 digits before the exponent and an exponent of at most 300
+// keep every step finite (a value beyond float's range is refused by the range checks).
+inline bool obj_number_tame(const std::string& word) {
+    size_t i = 0, digits = 0;
+    if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+    for (; i < word.size() && ((word[i] >= '0' && word[i] <= '9') || word[i] == '.'); ++i) digits += word[i] != '.';
+    if (digits > 64) return false;
+    if (i >= word.size() || (word[i] != 'e' && word[i] != 'E')) return true;
+    ++i;
+    if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+    int exponent = 0, exponent_digits = 0;
+    for (; i < word.size() && word[i] >= '0' && word[i] <= '9'; ++i, ++exponent_digits)
+        if (exponent_digits < 4) exponent = exponent * 10 + (word[i] - '0');
+    return exponent_digits <= 3 && exponent <= 300;
+}
+
 // tinyobjloader reads what it can and silently turns a malformed number into 0, converts numbers
 // with undefined behaviour when they are out of range, and splits a polygon into triangles in
-// time quadratic in its corners; so the lines that matter are checked first. Throws scene_error
+// time quadratic in its corners; so the lines that matter are checked first, split as
+// tinyobjloader splits them (a lone carriage return ends a line too). Throws scene_error
 // "path:LINE: problem" for:
 //   - a NUL byte anywhere (a text format holds none);
 //   - a coordinate of v, vn or vt that is not a number, whole, within float's range;
+//   - a number on a v, vn, vt, s, t or vw line that tinyobjloader would overflow on
+//     (obj_number_tame: more than 64 digits, or an exponent above 300);
 //   - a face (f) with fewer than three corners or more than max_obj_face_corners (1024), and any
 //     index of f, l or p (vertex, texture coordinate or normal: "v/vt/vn", 1-based, or negative
 //     = relative) that is 0, does not exist (so far in the file), or is beyond an int;
-//   - a number on an s, t or vw line that is beyond an int.
+//   - a number on an s, t or vw line that is beyond an int (on a vw line, once rounded to a float).
 inline void check_obj_text(const std::string& text, const std::string& path) {
     if (size_t nul = text.find('\0'); nul != std::string::npos)
         throw scene_error(path + ":" + std::to_string(line_index(text).line_of(nul)) +
@@ -90,19 +116,27 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
     size_t counts[3] = {0, 0, 0}; // v, vt, vn lines so far
     const char* count_names[3] = {"vertex", "texture coordinate", "normal"};
     const char* plural_names[3] = {"vertices", "texture coordinates", "normals"};
-    text_lines lines(text);
-    for (std::string_view text_line; lines.next(text_line);) {
-        std::istringstream line{std::string(text_line)};
+    // Lines as tinyobjloader splits them: at "\n", "\r\n" or a lone "\r".
+    size_t next = 0, number = 0;
+    while (next < text.size()) {
+        const size_t end = std::min(text.find_first_of("\r\n", next), text.size());
+        std::istringstream line{text.substr(next, end - next)};
+        next = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+        ++number;
         auto fail = [&](const std::string& what) {
-            throw scene_error(path + ":" + std::to_string(lines.number()) + ": malformed OBJ file: " + what);
+            throw scene_error(path + ":" + std::to_string(number) + ": malformed OBJ file: " + what);
         };
         std::string keyword;
         if (!(line >> keyword)) continue;
         if (keyword == "v" || keyword == "vn" || keyword == "vt") {
             size_t needed = keyword == "vt" ? 1 : 3, count = 0;
-            for (std::string word; line >> word; ++count)
+            for (std::string word; line >> word; ++count) {
                 if (!obj_float_fits(word))
                     fail("'" + word + "' in a '" + keyword + "' line is not a finite number within float's range");
+                if (!obj_number_tame(word))
+                    fail("'" + word + "' in a '" + keyword + "' line has more digits than a number needs (at most 64, " +
+                         "and an exponent of at most 300)");
+            }
             if (count < needed) fail("a '" + keyword + "' line needs " + std::to_string(needed) + " numbers");
             ++counts[keyword == "v" ? 0 : keyword == "vt" ? 1 : 2];
         } else if (keyword == "f" || keyword == "l" || keyword == "p") {
@@ -143,7 +177,11 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
                     char* stop = nullptr;
                     const double x = std::strtod(part.c_str(), &stop);
                     const bool is_number = stop != part.c_str() && stop == part.c_str() + part.size();
-                    if (!obj_int_prefix_fits(part) || (is_number && !(std::fabs(x) <= double(FLT_MAX))))
+                    // A vw line's joint ids are read as floats (of the number at the start of the
+                    // word, whatever follows it), then converted to int: kept well inside an int.
+                    const bool vw_joint_fits = keyword != "vw" || stop == part.c_str() || std::fabs(x) < 2147483000.0;
+                    if (!obj_int_prefix_fits(part) || (is_number && !(std::fabs(x) <= double(FLT_MAX))) ||
+                        !vw_joint_fits || !obj_number_tame(part))
                         fail("'" + word + "' in a '" + keyword + "' line is out of range (of an int, or of a float)");
                 }
         }
@@ -153,7 +191,11 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
 } // namespace detail
 
 inline std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat) {
-    const std::string text = read_file(path, "OBJ file");
+    return decode_obj(read_file(path, "OBJ file"), path, std::move(mat));
+}
+
+inline std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
+                                                 std::shared_ptr<material> mat) {
     detail::check_obj_text(text, path);
 
     tinyobj::ObjReaderConfig config;

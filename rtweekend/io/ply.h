@@ -44,6 +44,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace rt {
@@ -51,6 +52,9 @@ namespace rt {
 // Reads a PLY file into a mesh with material `mat`. Throws scene_error "path: problem" (with the
 // line for ASCII data: "path:LINE: problem").
 std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::shared_ptr<material> mat);
+
+// load_ply on a file's bytes already in memory; `path` names it in messages.
+std::shared_ptr<triangle_mesh> decode_ply(const std::string& bytes, const std::string& path, std::shared_ptr<material> mat);
 
 // Writes `mesh` as PLY (binary little-endian or ASCII). Throws scene_error naming the path when
 // it cannot be written or a face uses a vertex the mesh does not have.
@@ -308,10 +312,14 @@ class ply_data {
 } // namespace detail
 
 inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::shared_ptr<material> mat) {
+    return decode_ply(read_file(path, "PLY file"), path, std::move(mat));
+}
+
+inline std::shared_ptr<triangle_mesh> decode_ply(const std::string& text, const std::string& path,
+                                                 std::shared_ptr<material> mat) {
     using detail::ply_element;
     using detail::ply_property;
     using detail::ply_type;
-    const std::string text = read_file(path, "PLY file");
     // A NUL byte has no place in the header, nor anywhere in an ASCII file (found below, once the
     // format is known); it would hide the rest of a token from the number parsers.
     auto refuse_nul = [&](size_t end) {

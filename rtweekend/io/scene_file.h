@@ -111,6 +111,10 @@ void check_camera_image_size(const camera& cam);
 // is allocated.
 scene_description load_scene(const std::string& path);
 
+// load_scene on a file's text already in memory: `path` names it in messages, and relative mesh
+// and texture paths are relative to its folder.
+scene_description decode_scene(const std::string& text, const std::string& path);
+
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 namespace detail {
@@ -586,8 +590,9 @@ inline void check_camera_image_size(const camera& c) {
         check_image_size(uint64_t(c.image_width), uint64_t(h), "the image (camera image_width, image_height, aspect_ratio)");
 }
 
-inline scene_description load_scene(const std::string& path) {
-    const std::string text = read_file(path, "scene file");
+inline scene_description load_scene(const std::string& path) { return decode_scene(read_file(path, "scene file"), path); }
+
+inline scene_description decode_scene(const std::string& text, const std::string& path) {
     std::istringstream in(text);
     scene_description scene = parse_scene(in, path);
     // Directives that placed nothing in the world (an empty file is parse_scene's error).

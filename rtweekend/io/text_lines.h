@@ -8,9 +8,14 @@
 //
 //   line_index index(text);                            // for parsers that report byte offsets
 //   index.line_of(offset)                              // 1-based line holding that byte
+//
+//   one_line(message)                                  // control characters (a line break in a
+//                                                      // quoted value) shown as \x0a: a message
+//                                                      // stays one line
 
 #include <algorithm>
 #include <cstddef>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -53,5 +58,23 @@ class line_index {
   private:
     std::vector<size_t> newlines_; // offsets of the '\n' characters
 };
+
+// The message with each control character but the tab (line breaks above all) written as \xNN.
+inline std::string one_line(const std::string& message) {
+    static const char digits[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(message.size());
+    for (char c : message) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if ((u < 0x20 && c != '\t') || u == 0x7f) {
+            out += "\\x";
+            out += digits[u >> 4];
+            out += digits[u & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
 
 } // namespace rt

@@ -81,9 +81,14 @@ namespace rt {
 // Reads a CENG795 XML scene. Throws scene_error (see above).
 whitted_scene load_xml_scene(const std::string& path);
 
+// load_xml_scene on a file's text already in memory: `path` names it in messages, and a plyFile
+// is read relative to its folder.
+whitted_scene decode_xml_scene(const std::string& text, const std::string& path);
+
 // What is wrong with a camera's ImageName as a file name inside the output directory, "" if
 // nothing: it must be a relative path without a ".." component (and not empty), so that the image
-// lands inside the directory the user chose (render -o DIR), never beside or above it.
+// lands inside the directory the user chose (render -o DIR), never beside or above it; and it may
+// hold no control character (a line break would also split every message that names the file).
 std::string image_name_problem(const std::string& image_name);
 
 // Gives `mesh` area-weighted vertex normals and turns on smooth shading: each vertex's normal is
@@ -96,6 +101,9 @@ void set_smooth_normals(triangle_mesh& mesh);
 
 inline std::string image_name_problem(const std::string& image_name) {
     if (image_name.empty()) return "is empty";
+    for (char c : image_name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            return "has a control character (a line break, say): is the file damaged?";
     // '/' and '\\' both count as separators, so that a name means the same on every system.
     const std::filesystem::path p(image_name);
     if (p.is_absolute() || p.has_root_name() || image_name[0] == '/' || image_name[0] == '\\')
@@ -176,7 +184,8 @@ class xml_scene_reader {
     size_t line_at(ptrdiff_t offset) const { return offset < 0 ? 0 : lines_.line_of(size_t(offset)); }
     [[noreturn]] void fail(node at, const std::string& owner, const std::string& problem) const {
         size_t line = at ? line_at(at.offset_debug()) : 0;
-        throw scene_error(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner + ": " + problem);
+        // Values quoted from the file may hold line breaks (&#10;): the message stays one line.
+        throw scene_error(one_line(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner + ": " + problem));
     }
     static std::string tag(node n) { return "<" + std::string(n.name()) + ">"; }
     // <Name id="N">, or <Name> without an id.
@@ -620,7 +629,10 @@ class xml_scene_reader {
 } // namespace detail
 
 inline whitted_scene load_xml_scene(const std::string& path) {
-    const std::string text = read_file(path, "XML scene file");
+    return decode_xml_scene(read_file(path, "XML scene file"), path);
+}
+
+inline whitted_scene decode_xml_scene(const std::string& text, const std::string& path) {
     return detail::xml_scene_reader(path, text).read();
 }
 

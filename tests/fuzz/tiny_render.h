@@ -1,0 +1,37 @@
+#pragma once
+// Settings that keep one fuzzer execution's render to a few milliseconds, applied after a scene is
+// loaded and checked: at most 8x8 pixels, 2 samples per pixel and 4 rays per path on one thread,
+// quiet; an XML scene's cameras at most 4x4 pixels and 3 bounces. Only values that are valid
+// and larger are lowered, so invalid ones still reach the checks that refuse them.
+
+#include <rtweekend/camera.h>
+#include <rtweekend/whitted_scene.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fuzz {
+
+inline void shrink(rt::camera& cam) {
+    cam.image_width = std::min(cam.image_width, 8);
+    if (cam.image_height > 8) cam.image_height = 8;
+    else if (cam.image_height == 0 && cam.image_width >= 1 && std::isfinite(cam.aspect_ratio) && cam.aspect_ratio > 0 &&
+             cam.image_width / cam.aspect_ratio > 8)
+        cam.image_height = 8;
+    cam.samples_per_pixel = std::min(cam.samples_per_pixel, 2);
+    cam.adaptive_min_samples = std::min(cam.adaptive_min_samples, 2);
+    cam.max_depth = std::min(cam.max_depth, 4);
+    cam.threads = 1;
+    cam.quiet = true;
+    cam.stop = nullptr;
+}
+
+inline void shrink(rt::whitted_scene& scene) {
+    for (rt::view_camera& c : scene.cameras) {
+        c.width = std::min(c.width, 4);
+        c.height = std::min(c.height, 4);
+    }
+    scene.max_recursion_depth = std::min(scene.max_recursion_depth, 3);
+}
+
+} // namespace fuzz
