@@ -7,98 +7,25 @@
 //   render scene.txt --width 1200 --spp 100 > scene.ppm
 //   render scene.xml -o out/ --bfc on
 //   render scene.xml -o out/ --integrator path --spp 256
+//   render scene.txt --spp 64 --samples 0:32 -o part0.pfm    (a slice, for apps/merge)
 
-#include "app_options.h"
-
-#include <rtweekend/camera.h>
-#include <rtweekend/io/scene_file.h>
-#include <rtweekend/engine/path_tracer.h>
-#include <rtweekend/engine/whitted.h>
-#include <rtweekend/io/xml_scene.h>
+#include "render_common.h"
 
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
-#include <system_error>
 #include <vector>
 
 namespace {
 
-// Where each camera's image goes: ImageName inside the output directory. All are checked (inside
-// that directory, known format, writable, no two cameras on one file) before anything is rendered.
-std::vector<std::string> output_paths(const rt::whitted_scene& scene, const std::string& scene_path,
-                                      const std::string& directory) {
-    namespace fs = std::filesystem;
-    fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
-    std::error_code ec;
-    if (!directory.empty()) {
-        if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-            throw rt::scene_error("-o " + directory + ": not a directory (an XML scene writes one image per camera)");
-        fs::create_directories(dir, ec);
-        if (ec) throw rt::scene_error("cannot create directory '" + directory + "': " + ec.message());
-    }
-    std::vector<std::string> paths;
-    for (size_t i = 0; i < scene.cameras.size(); ++i) {
-        const std::string& name = scene.cameras[i].image_name;
-        if (name.empty())
-            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + " has no <ImageName>");
-        // The loader refuses such names already; a scene built in code reaches here unchecked.
-        std::string unsafe = rt::image_name_problem(name);
-        if (!unsafe.empty())
-            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name + "' " +
-                                  unsafe);
-        std::string path = (dir / name).lexically_normal().string();
-        std::string ext = rt::lowercase_extension(path);
-        if (ext != ".png" && ext != ".ppm")
-            throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +
-                                  "' must end in .png or .ppm");
-        for (size_t j = 0; j < i; ++j)
-            if (paths[j] == path)
-                throw rt::scene_error(scene_path + ": cameras " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
-                                      " would both write '" + path + "'");
-        fs::path parent = fs::path(path).parent_path();
-        if (!parent.empty()) fs::create_directories(parent, ec);
-        // A symbolic link inside the directory could still lead out of it: where the file really
-        // goes must lie under where the directory really is.
-        const fs::path real_dir = fs::weakly_canonical(dir, ec), real_path = fs::weakly_canonical(path, ec);
-        if (!ec) {
-            auto rel = real_path.lexically_relative(real_dir);
-            if (rel.empty() || rel.is_absolute() || *rel.begin() == "..")
-                throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +
-                                      "' resolves to '" + real_path.string() + "', outside the output directory '" +
-                                      real_dir.string() + "'");
-        }
-        rt::check_output_path(path);
-        paths.push_back(path);
-    }
-    return paths;
-}
-
-// A course scene through the path tracer: its point lights with indirect light, each material's
-// DiffuseReflectance as a Lambertian albedo under its mirror, conductor or glass lobe. Ambient
-// light has no meaning here (indirect light is computed, not approximated) and is ignored, as are
-// the Blinn-Phong specular terms for now. The background is seen by camera rays only, as in the
-// course; the images keep the course's units (0..255, no gamma). The course shades a point light
-// as kd E cos: pi times the radiance a Lambertian surface of albedo kd reflects under a light of
-// intensity I, so the lights' intensities are taken times pi, and the direct light matches the
-// Whitted image's.
+// A course scene through the path tracer (app::xml_path_settings says what carries over).
 void render_xml_path_traced(const app::options& opt, const rt::whitted_scene& scene,
                             const std::vector<std::string>& outputs) {
-    rt::render_settings settings;
-    settings.samples_per_pixel = opt.spp.value_or(64);
-    settings.max_depth = opt.depth.value_or(10);
-    settings.seed = opt.seed.value_or(0);
-    settings.threads = opt.threads.value_or(0);
-    settings.quiet = opt.quiet;
-    settings.adaptive_error = opt.adaptive.value_or(0);
-    settings.estimator = opt.estimator.value_or(rt::path_estimator::nee);
-    if (opt.sampler) settings.sampler = *opt.sampler;
+    rt::render_settings settings = app::xml_path_settings(opt);
     app::catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
     settings.stop = &app::interrupt_requested;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
-    std::vector<rt::point_light> lights = scene.lights;
-    for (rt::point_light& l : lights) l.intensity *= rt::pi;
+    const std::vector<rt::point_light> lights = app::xml_path_lights(scene);
     for (size_t i = 0; i < scene.cameras.size(); ++i) {
         rt::render_result r = rt::path_trace(scene.world, rt::view_camera_frame(scene.cameras[i]), env, settings, lights);
         rt::write_whitted_image(outputs[i], r.img);
@@ -117,22 +44,32 @@ void render_xml(const app::options& opt) {
     const std::string& scene_path = opt.positional[0];
     rt::whitted_scene scene = rt::load_xml_scene(scene_path);
     if (scene.cameras.empty()) throw rt::scene_error(scene_path + ": the scene has no <Camera>: nothing to render");
-    std::vector<std::string> outputs = output_paths(scene, scene_path, opt.output);
+    std::vector<std::string> outputs = app::output_paths(scene, scene_path, opt.output);
     if (opt.path_integrator) {
         render_xml_path_traced(opt, scene, outputs);
         return;
     }
 
-    rt::whitted_options options;
-    options.threads = opt.threads.value_or(0);
-    options.cull_back_faces = opt.cull_back_faces.value_or(false);
-    options.quiet = opt.quiet;
-    rt::whitted_renderer renderer(scene, options);
+    rt::whitted_renderer renderer(scene, app::whitted_settings(opt));
     for (size_t i = 0; i < scene.cameras.size(); ++i) {
         rt::whitted_render r = renderer.render(i);
         rt::write_whitted_image(outputs[i], r.img);
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
     }
+}
+
+// A text scene through the path tracer: the image, or with --samples A:B a slice.
+void render_text(const app::options& opt) {
+    rt::scene_description scene = app::load_text_scene(opt);
+    if (!opt.samples) {
+        app::write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
+        return;
+    }
+    // The fingerprint of what was read, taken now: the files could change during a long render.
+    const std::string fingerprint = rt::scene_fingerprint(scene.files);
+    const rt::render_settings settings = app::text_scene_settings(opt, scene.cam);
+    rt::render_result r = rt::path_trace(scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights);
+    app::write_slice_output(opt, settings, r, fingerprint);
 }
 
 } // namespace
@@ -142,22 +79,10 @@ int main(int argc, char** argv) {
                                  "with the Whitted ray tracer.",
                        "SCENE.txt|SCENE.xml", 1, 1};
     d.xml_scenes = true;
+    d.slices = true;
     app::options opt = app::parse(argc, argv, d);
     return app::run(d, [&] {
-        if (app::is_xml_scene(opt.positional[0])) {
-            render_xml(opt);
-            return;
-        }
-        rt::scene_description scene = rt::load_scene(opt.positional[0]);
-        opt.apply(scene.cam);
-        // --width may make the image larger than the file did: the pixel limit again, before the
-        // image is allocated.
-        try {
-            rt::check_camera_image_size(scene.cam);
-        } catch (const rt::scene_error& e) {
-            if (!opt.width) throw;
-            throw rt::scene_error("--width " + std::to_string(*opt.width) + ": " + e.what());
-        }
-        app::write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
+        if (app::is_xml_scene(opt.positional[0])) render_xml(opt);
+        else render_text(opt);
     });
 }

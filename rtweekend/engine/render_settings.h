@@ -55,6 +55,16 @@ struct render_settings {
     int adaptive_min_samples = 16;
     path_estimator estimator = path_estimator::nee; // the path tracer's
     sampler_kind sampler = sampler_kind::sobol;      // where a sample's numbers come from (sampler.h)
+    // The samples this render takes of every pixel: [first_sample, end_sample), end_sample 0 meaning
+    // samples_per_pixel. Sample s is the same sample in any range (its numbers depend on (seed,
+    // pixel, s) and on samples_per_pixel, the whole render's), so renders of disjoint ranges add up
+    // to the whole render exactly (engine/fixed_point.h): `render --samples A:B` slices
+    // (io/slice_file.h). Uniform sampling only: adaptive sampling decides its counts.
+    int first_sample = 0;
+    int end_sample = 0;
+    // Keep the exact fixed-point sums in render_result::sums (uniform sampling), for whoever adds
+    // renders of parts together. Off by default: they take twice the memory of the image.
+    bool keep_sums = false;
     // Set to true (from any thread, e.g. an app's SIGINT handling) to stop the render early: the
     // scheduler polls it between pixels and returns the average of the samples taken so far
     // (render_stats::interrupted). The caller owns the flag; the library installs no signal handler.
@@ -72,7 +82,18 @@ struct render_settings {
                 "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
         require(adaptive_min_samples >= 2, "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
                                                std::to_string(adaptive_min_samples));
+        const int end = sample_end();
+        require(first_sample >= 0 && first_sample < end && end <= samples_per_pixel,
+                "the sample range [" + std::to_string(first_sample) + ", " + std::to_string(end) +
+                    ") must be a non-empty part of [0, " + std::to_string(samples_per_pixel) + ")");
+        require(adaptive_error == 0 || (first_sample == 0 && end == samples_per_pixel),
+                "a sample range applies to uniform sampling only (adaptive sampling decides how many samples a "
+                "pixel takes)");
     }
+
+    // The end of the sample range: end_sample, or samples_per_pixel when it is 0.
+    int sample_end() const { return end_sample != 0 ? end_sample : samples_per_pixel; }
+    bool whole_sample_range() const { return first_sample == 0 && sample_end() == samples_per_pixel; }
 };
 
 } // namespace rt

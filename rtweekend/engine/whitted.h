@@ -75,11 +75,14 @@ struct whitted_options {
     // followed, and at most max_branch_rays rays are traced after the camera ray.
     float min_branch_weight = 1.0f / (1 << 24);
     uint32_t max_branch_rays = 1u << 14;
+    // Whether to keep the exact sums behind the image (whitted_render::sums), to add up.
+    bool keep_sums = false;
 };
 
 struct whitted_render {
     image img;          // radiance, 0..255 per channel is the displayable range; not clamped
     render_stats stats; // rays counts camera, reflected, refracted and shadow rays
+    pixel_sums sums;    // with whitted_options::keep_sums: the exact sums behind img
 };
 
 // The course's point-light shading terms of a material that are not part of its BSDF: ambient
@@ -363,6 +366,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     settings.samples_per_pixel = 1;
     settings.threads = options_.threads;
     settings.quiet = options_.quiet;
+    settings.keep_sums = options_.keep_sums;
     render_result out = render_samples(
         c.width, c.height, settings,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
@@ -375,7 +379,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
             return trace(r, rng, rays); // delta lobes draw no random numbers
         },
         start);
-    return {std::move(out.img), out.stats};
+    return {std::move(out.img), out.stats, std::move(out.sums)};
 }
 
 inline whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, const whitted_options& options) {
