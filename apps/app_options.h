@@ -100,6 +100,9 @@ struct description {
     bool xml_scenes = false;
     // Set by apps that render sample slices: they take --samples A:B.
     bool slices = false;
+    // Whether parse() checks that -o can be written. render_mpi checks it itself, on rank 0 only
+    // (the only rank that writes) and agreed with the others, so that no rank exits alone.
+    bool check_output = true;
 };
 
 // Whether a scene file is a CENG795 XML scene (by extension), rather than a text scene.
@@ -268,7 +271,7 @@ inline options parse(int argc, char** argv, const description& d) {
         if (rt::lowercase_extension(o.output) != ".pfm")
             usage_error(d, "--samples writes a slice: -o must name a .pfm file");
     }
-    if (!o.output.empty() && !xml) {
+    if (!o.output.empty() && !xml && d.check_output) {
         // Refuse a bad output path before rendering, not after.
         try {
             rt::check_output_path(o.output);

@@ -1,8 +1,7 @@
 #pragma once
-// How render renders each kind of scene, kept apart from its main so that another program can take
-// exactly the same scenes and flags and make the same images: where an XML scene's images go, the
-// settings of each kind of render, and the sample slices of `render --samples A:B`
-// (rtweekend/io/slice_file.h).
+// What render and render_mpi share, so that both take exactly the same scenes and flags and make
+// the same images: where an XML scene's images go, the settings of each kind of render, and the
+// sample slices of `render --samples A:B` (rtweekend/io/slice_file.h).
 
 #include "app_options.h"
 

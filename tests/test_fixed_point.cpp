@@ -1,6 +1,7 @@
 // Fixed-point sample sums (rtweekend/engine/fixed_point.h) and what they buy the scheduler: sums
 // that do not depend on the order or grouping of a pixel's samples, so that renders of parts of
-// the sample range add up to the whole render exactly; and clamping, counted, instead of overflow.
+// the sample range, of the image's tiles, or of adaptive sampling's rounds split over processes
+// add up to the lone render exactly; and clamping, counted, instead of overflow.
 
 #include <rtweekend/engine/fixed_point.h>
 #include <rtweekend/engine/scheduler.h>
@@ -9,10 +10,15 @@
 
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace rt;
@@ -222,4 +228,125 @@ TEST_CASE("scheduler: samples beyond the fixed-point range are clamped, counted 
     // None: not mentioned.
     render_result calm = render_values(w, h, quiet_settings(spp, 1), awkward);
     CHECK(stats_line(calm.stats).find("fixed-point") == std::string::npos);
+}
+
+namespace {
+
+// An in-process stand-in for the processes of a shared render: `ranks` threads each render their
+// part through render_samples; combine_owned() meets all of them (a barrier), ORs their words and
+// hands every one the result, as MPI_Allreduce with MPI_BOR would.
+class thread_group {
+  public:
+    explicit thread_group(int ranks) : ranks_(ranks) {}
+
+    void combine(uint64_t* words, size_t count) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        const uint64_t generation = generation_;
+        if (arrived_ == 0) combined_.assign(count, 0);
+        CHECK(combined_.size() == count);
+        for (size_t i = 0; i < count; ++i) combined_[i] |= words[i];
+        if (++arrived_ == ranks_) {
+            result_ = combined_;
+            arrived_ = 0;
+            ++generation_;
+            changed_.notify_all();
+        } else {
+            changed_.wait(lock, [&] { return generation_ != generation; });
+        }
+        std::copy(result_.begin(), result_.end(), words);
+    }
+
+  private:
+    int ranks_, arrived_ = 0;
+    uint64_t generation_ = 0;
+    std::vector<uint64_t> combined_, result_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+};
+
+class thread_share : public render_share {
+  public:
+    thread_share(thread_group& group, int rank, int ranks, bool by_tiles)
+        : render_share(rank, ranks, by_tiles), group_(group) {}
+    void ready() const override {}
+    void round_done(std::exception_ptr failure) const override {
+        if (failure) std::rethrow_exception(failure);
+    }
+    void combine_owned(uint64_t* words, size_t count) const override { group_.combine(words, count); }
+
+  private:
+    thread_group& group_;
+};
+
+// A noisy synthetic render for adaptive sampling: the noise grows to the right, so pixels take
+// different counts and the rounds differ.
+vec3f noisy(int x, int y, int, pcg32& rng, uint64_t& rays) {
+    rays += 1 + uint64_t(x % 3);
+    const float u = rng.next_float();
+    const float v = 0.2f + 0.05f * float(y) + float(x) * 0.08f * (u - 0.5f);
+    return vec3f(v, v * u, 0.3f);
+}
+
+} // namespace
+
+TEST_CASE("scheduler: a render shared by tiles adds up to the lone render, each pixel from one process") {
+    const int w = 50, h = 35, spp = 3;
+    render_settings lone = quiet_settings(spp, 2);
+    lone.keep_sums = true;
+    render_result all = render_values(w, h, lone, awkward);
+    for (int ranks : {2, 3, 7}) {
+        CAPTURE(ranks);
+        thread_group group(ranks);
+        pixel_sums added(w, h);
+        uint64_t samples = 0;
+        for (int rank = 0; rank < ranks; ++rank) {
+            thread_share share(group, rank, ranks, true);
+            render_settings s = lone;
+            s.share = &share;
+            render_result r = render_values(w, h, s, awkward);
+            samples += r.stats.samples;
+            for (size_t i = 0; i < added.rgb.size(); ++i) added.rgb[i] += r.sums.rgb[i];
+            for (size_t i = 0; i < added.counts.size(); ++i) added.counts[i] += r.sums.counts[i];
+        }
+        CHECK(samples == all.stats.samples);
+        // Every pixel was rendered by exactly one process: all of its samples, once.
+        CHECK(std::all_of(added.counts.begin(), added.counts.end(), [&](int32_t n) { return n == spp; }));
+        CHECK(added.rgb == all.sums.rgb);
+        CHECK(test::same_bits(mean_image(added), all.img));
+    }
+}
+
+TEST_CASE("scheduler: adaptive sampling shared by processes ends every round with the lone render's state") {
+    const int w = 24, h = 12, spp = 64;
+    render_settings lone = quiet_settings(spp, 2);
+    lone.adaptive_error = 0.05;
+    lone.adaptive_min_samples = 4;
+    render_result alone = render_samples(w, h, lone, noisy);
+    REQUIRE(alone.stats.samples_saved > 0); // the plan did vary the counts
+    REQUIRE(alone.stats.max_pixel_samples > alone.stats.min_pixel_samples);
+    for (int ranks : {2, 3}) {
+        CAPTURE(ranks);
+        thread_group group(ranks);
+        std::vector<render_result> results(static_cast<size_t>(ranks));
+        std::vector<std::thread> processes;
+        for (int rank = 0; rank < ranks; ++rank)
+            processes.emplace_back([&, rank] {
+                thread_share share(group, rank, ranks, false);
+                render_settings s = lone;
+                s.threads = 1;
+                s.share = &share;
+                results[size_t(rank)] = render_samples(w, h, s, noisy);
+            });
+        for (std::thread& t : processes) t.join();
+        uint64_t samples = 0, rays = 0;
+        for (const render_result& r : results) {
+            CHECK(test::same_bits(r.img, alone.img)); // every process holds the whole image
+            samples += r.stats.samples;
+            rays += r.stats.rays;
+        }
+        CHECK(samples == alone.stats.samples);
+        CHECK(rays == alone.stats.rays);
+        // The work was shared: no process took all of it.
+        for (const render_result& r : results) CHECK(r.stats.samples < alone.stats.samples);
+    }
 }

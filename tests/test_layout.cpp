@@ -46,9 +46,9 @@ const std::vector<std::vector<std::string>> ladder = {
      "io/image_write.h", "io/exr.h"},
     // 7. the book's camera, over the path tracer
     {"camera.h"},
-    // 8. files and measuring tools
+    // 8. files and measuring tools; the render over MPI ranks (over the camera and the integrators)
     {"io/obj.h", "io/ply.h", "io/scene_file.h", "io/xml_scene.h", "io/ray_file.h", "io/image_read.h",
-     "io/slice_file.h", "measure/metrics.h"},
+     "io/slice_file.h", "measure/metrics.h", "engine/mpi_render.h"},
     // 9. the umbrella header
     {"rtweekend.h"},
 };

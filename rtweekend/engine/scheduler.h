@@ -19,8 +19,9 @@
 // every pixel has at least one, and the counts differ at most by the interrupted pass (a pixel
 // has either n or 2n samples). Each pixel's sum is kept in 64-bit fixed point (fixed_point.h), which
 // no order of additions changes, so an uninterrupted render gives exactly the image of a single
-// pass, and renders of parts of the sample range (settings.first_sample, end_sample) add up to
-// exactly the sums of the whole (settings.keep_sums hands them out: render_result::sums).
+// pass, and renders of parts of the sample range (settings.first_sample, end_sample) or of the
+// image (settings.share) add up to exactly the sums of the whole (settings.keep_sums hands them
+// out: render_result::sums).
 
 #include "../measure/adaptive.h"
 #include "fixed_point.h"
@@ -58,7 +59,8 @@ namespace rt {
 struct render_stats {
     int width = 0, height = 0;
     int samples_per_pixel = 0;
-    int threads = 0;
+    int threads = 0;                // over all processes of a shared render
+    int ranks = 1;                  // processes that shared the render (engine/mpi_render.h)
     uint64_t rays = 0;              // every ray traced: camera rays and scattered rays
     uint64_t samples = 0;           // camera samples taken
     uint64_t samples_saved = 0;     // by adaptive sampling: width * height * spp - samples
@@ -275,7 +277,8 @@ inline int render_threads(const render_settings& settings, int jobs) {
 }
 
 // The statistics; `counts(i)` is the number of samples pixel i took, `planned` the number the
-// render set out to take. The statistics line goes to stderr unless settings.quiet.
+// render set out to take. The statistics line goes to stderr unless settings.quiet, or the render
+// is shared (the share's owner reports the whole render, not this process's part).
 template <class Counts>
 render_stats make_stats(int width, int height, const render_settings& settings, int threads, const sample_totals& t,
                         uint64_t planned, std::chrono::steady_clock::time_point start, Counts&& counts) {
@@ -303,7 +306,7 @@ render_stats make_stats(int width, int height, const render_settings& settings, 
     st.samples_saved = st.interrupted || t.samples > planned ? 0 : planned - t.samples;
     st.completed = st.interrupted && planned > 0 ? double(t.samples) / double(planned) : 1.0;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!settings.quiet) std::fprintf(stderr, "%s\n", stats_line(st).c_str());
+    if (!settings.quiet && settings.share == nullptr) std::fprintf(stderr, "%s\n", stats_line(st).c_str());
     return st;
 }
 
@@ -322,27 +325,61 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
     plan_settings.min_samples = settings.adaptive_min_samples;
     plan_settings.max_samples = settings.samples_per_pixel;
     plan_settings.threads = threads;
+    if (settings.share) {
+        plan_settings.rank = settings.share->rank;
+        plan_settings.ranks = settings.share->ranks;
+    }
     adaptive_sampler plan(plan_settings);
 
     progress_meter progress(settings.quiet, start);
     sample_totals totals;
+    if (settings.share) settings.share->ready();
     for (int round = 0; !stop_requested(settings) && plan.plan_round(); ++round) {
         progress.start_round(round);
         std::atomic<int> jobs_done{0};
         const int jobs = int(plan.job_count());
-        sample_totals t = run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
-            for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
-                if (stop_requested(settings)) return;
-                int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
-                for (int s = item.first; s < item.first + item.count; ++s) {
-                    uint64_t rays_before = mine.rays;
-                    vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
-                    plan.add(item.pixel, c, mine.rays - rays_before);
+        auto take_round = [&] {
+            return run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
+                for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
+                    if (stop_requested(settings)) return;
+                    int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
+                    for (int s = item.first; s < item.first + item.count; ++s) {
+                        uint64_t rays_before = mine.rays;
+                        vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
+                        plan.add(item.pixel, c, mine.rays - rays_before);
+                    }
+                }
+                progress.show(++jobs_done, jobs);
+            });
+        };
+        sample_totals t;
+        std::exception_ptr failure; // shared renders: agreed on below, on every process
+        if (!settings.share) {
+            t = take_round();
+        } else {
+            try {
+                t = take_round();
+            } catch (...) {
+                failure = std::current_exception();
+            }
+        }
+        totals.add(t);
+        if (settings.share) {
+            // Every pixel's new state from the process that sampled it (see render_share); the
+            // words are made before the agreement, so that nothing can fail between it and the
+            // combination.
+            std::vector<uint64_t> words;
+            if (!failure) {
+                try {
+                    words = plan.pack_round();
+                } catch (...) {
+                    failure = std::current_exception();
                 }
             }
-            progress.show(++jobs_done, jobs);
-        });
-        totals.add(t);
+            settings.share->round_done(failure);
+            settings.share->combine_owned(words.data(), words.size());
+            plan.unpack_round(words);
+        }
     }
     progress.finish();
 
@@ -357,7 +394,8 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
 
 // Uniform sampling: the samples [first_sample, end_sample) of every pixel (all samples_per_pixel
 // of them by default), in passes over the image (1, 1, 2, 4, ... samples: see the top), each pass
-// cut into 16x16 tiles handed to the workers. The passes wait for each other (a pass must not start on a pixel whose previous pass is still
+// cut into 16x16 tiles handed to the workers. A shared render by tiles takes only its own tiles.
+// The passes wait for each other (a pass must not start on a pixel whose previous pass is still
 // running, as both would write its sums); a pass costs as much as all before it, so the waits at
 // their ends add up to about twice the last pass's.
 template <class SampleFn>
@@ -367,20 +405,31 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
     const int spp = settings.samples_per_pixel;
     const int first_sample = settings.first_sample, end_sample = settings.sample_end();
     const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile, tile_count = tiles_x * tiles_y;
-    const int threads = render_threads(settings, tile_count);
+    // This render's tiles: all, or every ranks-th from its rank on (round robin spreads the costly
+    // parts of an image over the processes better than bands would).
+    const bool by_tiles = settings.share != nullptr && settings.share->by_tiles && settings.share->ranks > 1;
+    const int tile_step = by_tiles ? settings.share->ranks : 1, tile_first = by_tiles ? settings.share->rank : 0;
+    const int my_tiles = tile_first < tile_count ? (tile_count - tile_first + tile_step - 1) / tile_step : 0;
+    const int threads = render_threads(settings, std::max(1, my_tiles));
     // Every sample is clamped so that spp of them cannot overflow a sum (fixed_point.h).
     const int64_t limit = sample_limit(spp);
 
     pixel_sums sums(w, h);
     progress_meter progress(settings.quiet, start);
-    const uint64_t pixels = uint64_t(w) * uint64_t(h);
-    const int64_t total = int64_t(pixels) * (end_sample - first_sample);
+    uint64_t my_pixels = 0;
+    for (int j = tile_first; j < tile_count; j += tile_step) {
+        const int x0 = (j % tiles_x) * tile, y0 = (j / tiles_x) * tile;
+        my_pixels += uint64_t(std::min(x0 + tile, w) - x0) * uint64_t(std::min(y0 + tile, h) - y0);
+    }
+    const int64_t total = int64_t(my_pixels) * (end_sample - first_sample);
     std::atomic<int64_t> done{0};
     sample_totals totals;
+    if (settings.share) settings.share->ready();
     for (int first = first_sample; first < end_sample && !stop_requested(settings);) {
         // This pass: samples [first, last), 1 sample, then 1, 2, 4 ... counted from the range's start.
         const int last = std::min(end_sample, first_sample + std::max(1, 2 * (first - first_sample)));
-        sample_totals t = run_jobs(threads, tile_count, [&](int j, sample_totals& mine) {
+        sample_totals t = run_jobs(threads, my_tiles, [&](int job, sample_totals& mine) {
+            const int j = tile_first + job * tile_step;
             int x0 = (j % tiles_x) * tile, y0 = (j / tiles_x) * tile;
             int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
             for (int y = y0; y < y1; ++y) {
@@ -410,7 +459,7 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
 
     render_result result;
     result.img = mean_image(sums);
-    const uint64_t planned = pixels * uint64_t(end_sample - first_sample);
+    const uint64_t planned = my_pixels * uint64_t(end_sample - first_sample);
     result.stats = make_stats(w, h, settings, threads, totals, planned, start, [&](size_t i) { return sums.counts[i]; });
     if (settings.keep_sums) result.sums = std::move(sums);
     return result;
@@ -429,9 +478,10 @@ render_result render_samples(int width, int height, const render_settings& setti
 inline std::string stats_line(const render_stats& s) {
     char line[256];
     std::snprintf(line, sizeof line,
-                  "rtweekend: %dx%d, %d spp: %llu rays in %.3f s = %.2f Mrays/s (%d thread%s), %llu NaN/Inf samples",
+                  "rtweekend: %dx%d, %d spp: %llu rays in %.3f s = %.2f Mrays/s (%d thread%s%s), %llu NaN/Inf samples",
                   s.width, s.height, s.samples_per_pixel, static_cast<unsigned long long>(s.rays), s.seconds,
                   s.mrays_per_second(), s.threads, s.threads == 1 ? "" : "s",
+                  s.ranks > 1 ? (" on " + std::to_string(s.ranks) + " ranks").c_str() : "",
                   static_cast<unsigned long long>(s.nonfinite_samples));
     std::string text = line;
     // Only when there are any: a clamp is a sign of a broken scene (fixed_point.h gives the limit).
@@ -440,7 +490,7 @@ inline std::string stats_line(const render_stats& s) {
                       static_cast<unsigned long long>(s.saturated_samples));
         text += line;
     }
-    // A part of the sample range (a slice): which part.
+    // A part of the sample range (a slice, an MPI rank's share): which part.
     if (s.end_sample > 0 && (s.first_sample != 0 || s.end_sample != s.samples_per_pixel)) {
         std::snprintf(line, sizeof line, ", samples %d to %d", s.first_sample, s.end_sample - 1);
         text += line;

@@ -75,7 +75,9 @@ struct whitted_options {
     // followed, and at most max_branch_rays rays are traced after the camera ray.
     float min_branch_weight = 1.0f / (1 << 24);
     uint32_t max_branch_rays = 1u << 14;
-    // Whether to keep the exact sums behind the image (whitted_render::sums), to add up.
+    // A render shared with other processes, which take the image's tiles in turn (render_share in
+    // render_settings.h; engine/mpi_render.h), and whether to keep the exact sums to add up.
+    const render_share* share = nullptr;
     bool keep_sums = false;
 };
 
@@ -366,6 +368,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     settings.samples_per_pixel = 1;
     settings.threads = options_.threads;
     settings.quiet = options_.quiet;
+    settings.share = options_.share;
     settings.keep_sums = options_.keep_sums;
     render_result out = render_samples(
         c.width, c.height, settings,
