@@ -97,11 +97,16 @@ struct whitted_options {
     // Set to true (from any thread, e.g. an app's SIGINT handling) to stop the render between
     // pixels; the pixels not reached are black (see "Interruption" above). The caller owns it.
     const std::atomic<bool>* stop = nullptr;
+    // A render shared with other processes, which take the image's tiles in turn (render_share in
+    // render_settings.h; engine/mpi_render.h), and whether to keep the exact sums to add up.
+    const render_share* share = nullptr;
+    bool keep_sums = false;
 };
 
 struct whitted_render {
     image img;          // radiance, 0..255 per channel is the displayable range; not clamped
     render_stats stats; // rays counts camera, reflected, refracted and shadow rays
+    pixel_sums sums;    // with whitted_options::keep_sums: the exact sums behind img
 };
 
 // The course's point-light shading terms of a material that are not part of its BSDF: ambient
@@ -390,6 +395,8 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     settings.threads = options_.threads;
     settings.quiet = options_.quiet;
     settings.stop = options_.stop;
+    settings.share = options_.share;
+    settings.keep_sums = options_.keep_sums;
     render_result out = render_samples(
         c.width, c.height, settings,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
@@ -402,7 +409,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
             return trace(r, rng, rays); // delta lobes draw no random numbers
         },
         start);
-    return {std::move(out.img), out.stats};
+    return {std::move(out.img), out.stats, std::move(out.sums)};
 }
 
 inline whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, const whitted_options& options) {

@@ -93,6 +93,10 @@ struct scene_description {
     camera cam;
     hittable_list world;
     std::vector<point_light> point_lights; // found by light sampling only (render with rt::render(cam, world, point_lights))
+    // Every file the scene was read from: the scene file (load_scene), then its meshes and image
+    // textures in the order read, as opened. What decides the image besides the settings, so what
+    // a fingerprint of the scene hashes (io/slice_file.h: slices of different scenes do not merge).
+    std::vector<std::string> files;
 };
 
 // Reads a scene from a stream; `name` is the file name used in error messages. Text without a
@@ -452,6 +456,7 @@ inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, 
         } catch (const scene_error& e) {
             line.fail(e.what());
         }
+        scene_.files.push_back(file);
         // `smooth`: shade with the file's vertex normals, or with computed ones if it has none.
         if (at < line.size() && line.word(at) == "smooth") {
             if (mesh->normals.empty() || mesh->face_normals.empty()) mesh->compute_vertex_normals();
@@ -484,7 +489,9 @@ inline void scene_parser::texture_line(const scene_line& line) {
     } else if (kind == "image") {
         line.expect_count(4, "texture name image file");
         try {
-            tex = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
+            auto image = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
+            scene_.files.push_back(image->image().path()); // where it was found ($RTW_IMAGES, images/...)
+            tex = std::move(image);
         } catch (const scene_error& e) {
             line.fail(e.what());
         }
@@ -595,6 +602,7 @@ inline scene_description load_scene(const std::string& path) { return decode_sce
 inline scene_description decode_scene(const std::string& text, const std::string& path) {
     std::istringstream in(text);
     scene_description scene = parse_scene(in, path);
+    scene.files.insert(scene.files.begin(), path);
     // Directives that placed nothing in the world (an empty file is parse_scene's error).
     if (scene.world.objects.empty())
         throw scene_error(path + ": the scene has no objects (a group's shapes count only where an instance places "
