@@ -39,8 +39,7 @@ int main(int argc, char** argv) {
         cam.samples_per_pixel = 1; // the ray through each pixel's centre
 
         opt.apply(cam);
-        rt::image img = cam.render_image(world, ray_color);
-        app::write_output(opt, img);
-        app::exit_if_interrupted(opt);
+        // The image and its statistics: on Ctrl-C, write_output says how many samples it holds.
+        app::write_output(opt, rt::render(cam, world, ray_color));
     });
 }

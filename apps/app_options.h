@@ -27,6 +27,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace app {
@@ -61,6 +62,9 @@ struct options {
     std::optional<rt::path_estimator> estimator; // --estimator nee|bsdf|mixture
     std::optional<rt::sampler_kind> sampler;     // --sampler independent|stratified|sobol
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
+    // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
+    // (rtweekend/io/slice_file.h) for `merge`.
+    std::optional<std::pair<int, int>> samples;
     std::string output; // empty: PPM on stdout
     bool quiet = false;
     std::vector<std::string> positional;
@@ -94,6 +98,11 @@ struct description {
     size_t min_positional = 0, max_positional = 0;
     // Set by apps that render CENG795 XML scenes: they take --bfc, and -o may name a directory.
     bool xml_scenes = false;
+    // Set by apps that render sample slices: they take --samples A:B.
+    bool slices = false;
+    // Whether parse() checks that -o can be written. render_mpi checks it itself, on rank 0 only
+    // (the only rank that writes) and agreed with the others, so that no rank exits alone.
+    bool check_output = true;
 };
 
 // Whether a scene file is a CENG795 XML scene (by extension), rather than a text scene.
@@ -129,6 +138,12 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
                  d.name, d.operands[0] ? " " : "", d.operands, d.summary);
+    if (d.slices)
+        std::fprintf(to,
+                     "  --samples A:B render samples A to B-1 of every pixel (of a render of --spp N, B <= N) and\n"
+                     "               write them as a slice: -o must name a .pfm file, which holds the slice's\n"
+                     "               mean as an image and its exact sums; `merge` adds slices up to the whole\n"
+                     "               render's image (text scenes, uniform sampling)\n");
     if (d.xml_scenes)
         std::fprintf(to,
                      "For a CENG795 XML scene (.xml), every camera is rendered with the Whitted ray tracer to its\n"
@@ -252,6 +267,14 @@ inline options parse_arguments(int argc, char** argv, const description& d) {
             std::string v = next();
             if (v != "path" && v != "whitted") stop_parsing("--integrator needs path or whitted, got '" + v + "'");
             o.path_integrator = v == "path";
+        } else if (arg == "--samples" && d.slices) {
+            const std::string v = next();
+            const size_t colon = v.find(':');
+            if (colon == std::string::npos) stop_parsing("--samples needs A:B (samples A to B-1), got '" + v + "'");
+            const int a = int(detail::integer_value(arg + " (first)", v.substr(0, colon), 0, (1 << 24) - 1));
+            const int b = int(detail::integer_value(arg + " (end)", v.substr(colon + 1), 1, 1 << 24));
+            if (b <= a) stop_parsing("--samples A:B needs A < B (samples A to B-1), got '" + v + "'");
+            o.samples = std::make_pair(a, b);
         } else if (arg == "--bfc" && d.xml_scenes) {
             std::string v = next();
             if (v != "on" && v != "off") stop_parsing("--bfc needs on or off, got '" + v + "'");
@@ -278,7 +301,13 @@ inline options parse_arguments(int argc, char** argv, const description& d) {
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");
     if (!xml && o.path_integrator) stop_parsing("--integrator applies to XML scenes only (text scenes are path traced)");
     if (!xml && o.cull_back_faces) stop_parsing("--bfc applies to XML scenes only");
-    if (!o.output.empty() && !xml) {
+    if (o.samples) {
+        if (xml) stop_parsing("--samples applies to text scenes only");
+        if (o.adaptive.value_or(0) > 0)
+            stop_parsing("--samples and --adaptive do not go together (adaptive sampling decides the counts)");
+        if (rt::lowercase_extension(o.output) != ".pfm") stop_parsing("--samples writes a slice: -o must name a .pfm file");
+    }
+    if (!o.output.empty() && !xml && d.check_output) {
         // Refuse a bad output path before rendering, not after.
         try {
             rt::check_output_path(o.output);
@@ -340,16 +369,6 @@ inline void write_output(const options& o, const rt::render_result& r) {
         note += "; " + std::to_string(s.pixels_without_samples) + " pixels took no sample and are black";
     std::fprintf(stderr, "%s: interrupted %s; wrote %s with the samples taken\n", o.program.c_str(), note.c_str(),
                  where.c_str());
-    std::fflush(nullptr);
-    std::exit(130);
-}
-
-// After a render that returned its image only (the apps with their own ray_color): the same
-// exit, without the sample counts it cannot know.
-inline void exit_if_interrupted(const options& o) {
-    if (!interrupt_requested.load()) return;
-    std::fprintf(stderr, "%s: interrupted; wrote %s with the samples taken\n", o.program.c_str(),
-                 o.output.empty() ? "the image to standard output" : o.output.c_str());
     std::fflush(nullptr);
     std::exit(130);
 }

@@ -2,12 +2,16 @@
 // The body of apps/render, in steps: a text scene is loaded with the flags applied, then rendered
 // and written; an XML scene is loaded, its output paths are checked, then each camera is rendered
 // and written. render.cpp runs the steps in a row; the command-line fuzzer
-// (tests/fuzz/fuzz_render_cli.cpp) runs the same steps and makes the image small in between.
+// (tests/fuzz/fuzz_render_cli.cpp) runs the same steps and makes the image small in between; and
+// render_mpi takes the same scenes and flags through the same settings (text_scene_settings,
+// xml_path_settings, whitted_settings) and writes the same slices (write_slice_output), so that
+// it makes the same images.
 //
 //   description render_description()               the app's name, summary and operands
 //   rt::scene_description read_text_scene(opt)      load_scene(opt.positional[0]), the flags applied
 //                                                   (opt.apply), the image size checked after --width
-//   render_text_scene(opt, scene)                   renders, writes -o FILE or a PPM on stdout
+//   render_text_scene(opt, scene)                   renders, writes -o FILE or a PPM on stdout, or with
+//                                                   --samples A:B the slice (io/slice_file.h)
 //   rt::whitted_scene read_xml_scene(opt)           load_xml_scene(opt.positional[0]), at least one camera
 //   xml_output_paths(scene, scene_path, dir)        each camera's image path inside -o DIR, all checked
 //   render_xml_scene(opt, scene, outputs)           every camera, Whitted or (--integrator path) path traced
@@ -20,9 +24,12 @@
 #include <rtweekend/engine/path_tracer.h>
 #include <rtweekend/engine/whitted.h>
 #include <rtweekend/io/scene_file.h>
+#include <rtweekend/io/slice_file.h>
 #include <rtweekend/io/text_lines.h>
 #include <rtweekend/io/xml_scene.h>
 
+#include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -37,6 +44,7 @@ inline description render_description() {
                             "with the Whitted ray tracer.",
                   "SCENE.txt|SCENE.xml", 1, 1};
     d.xml_scenes = true;
+    d.slices = true;
     return d;
 }
 
@@ -97,6 +105,22 @@ inline std::vector<std::string> xml_output_paths(const rt::whitted_scene& scene,
     return paths;
 }
 
+// A text scene's render settings: the camera's, with --samples A:B as the sample range (checked
+// against the render's samples per pixel) and the sums kept for the slice.
+inline rt::render_settings text_scene_settings(const options& opt, const rt::camera& cam) {
+    rt::render_settings settings = cam.settings();
+    if (opt.samples) {
+        if (opt.samples->second > settings.samples_per_pixel)
+            throw rt::scene_error("--samples " + std::to_string(opt.samples->first) + ":" +
+                                  std::to_string(opt.samples->second) + ": the render has only " +
+                                  std::to_string(settings.samples_per_pixel) + " samples per pixel (--spp)");
+        settings.first_sample = opt.samples->first;
+        settings.end_sample = opt.samples->second;
+        settings.keep_sums = true;
+    }
+    return settings;
+}
+
 // A course scene through the path tracer: its point lights with indirect light, each material's
 // DiffuseReflectance as a Lambertian albedo under its mirror, conductor or glass lobe. Ambient
 // light has no meaning here (indirect light is computed, not approximated) and is ignored, as are
@@ -105,8 +129,7 @@ inline std::vector<std::string> xml_output_paths(const rt::whitted_scene& scene,
 // as kd E cos: pi times the radiance a Lambertian surface of albedo kd reflects under a light of
 // intensity I, so the lights' intensities are taken times pi, and the direct light matches the
 // Whitted image's.
-inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
-                                   const std::vector<std::string>& outputs) {
+inline rt::render_settings xml_path_settings(const options& opt) {
     rt::render_settings settings;
     settings.samples_per_pixel = opt.spp.value_or(64);
     settings.max_depth = opt.depth.value_or(10);
@@ -116,19 +139,104 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     settings.adaptive_error = opt.adaptive.value_or(0);
     settings.estimator = opt.estimator.value_or(rt::path_estimator::nee);
     if (opt.sampler) settings.sampler = *opt.sampler;
+    return settings;
+}
+
+inline std::vector<rt::point_light> xml_path_lights(const rt::whitted_scene& scene) {
+    std::vector<rt::point_light> lights = scene.lights;
+    for (rt::point_light& l : lights) l.intensity *= rt::pi;
+    return lights;
+}
+
+inline rt::whitted_options whitted_settings(const options& opt) {
+    rt::whitted_options options;
+    options.threads = opt.threads.value_or(0);
+    options.cull_back_faces = opt.cull_back_faces.value_or(false);
+    options.quiet = opt.quiet;
+    return options;
+}
+
+// The settings that decide a sample's value besides those a slice records on their own (size,
+// samples per pixel, seed, sampler) and the scene's files: two slices merge only if this text is
+// the same. The camera's geometry comes from the scene file (in its fingerprint); the flags can
+// change only these.
+inline std::string slice_settings_text(const rt::render_settings& s) {
+    return "max_depth " + std::to_string(s.max_depth) + ", estimator " + rt::estimator_name(s.estimator);
+}
+
+// The slice a render of a part of the sample range makes (settings.keep_sums must have been set).
+inline rt::sample_slice make_slice(const rt::render_settings& settings, const rt::render_result& r,
+                                   const std::string& scene_fingerprint) {
+    rt::sample_slice slice;
+    slice.render.width = r.sums.width;
+    slice.render.height = r.sums.height;
+    slice.render.samples_per_pixel = settings.samples_per_pixel;
+    slice.render.seed = settings.seed;
+    slice.render.sampler = rt::sampler_name(settings.sampler);
+    slice.render.settings = slice_settings_text(settings);
+    slice.render.scene = scene_fingerprint;
+    slice.first_sample = settings.first_sample;
+    slice.end_sample = settings.sample_end();
+    slice.rays = r.stats.rays;
+    slice.nonfinite = r.stats.nonfinite_samples;
+    slice.saturated = r.stats.saturated_samples;
+    slice.sums = r.sums.rgb;
+    return slice;
+}
+
+// Writes a slice; an interrupted render cannot make one (a slice must hold every sample of its
+// range, or merging it would not give the whole render), so that is an exit with status 130 and
+// nothing written.
+inline void write_slice_output(const options& o, const rt::render_settings& settings, const rt::render_result& r,
+                               const std::string& scene_fingerprint) {
+    std::signal(SIGINT, SIG_DFL);
+    if (r.stats.interrupted) {
+        std::fprintf(stderr,
+                     "%s: interrupted after %d %% of the slice; nothing written (a slice must hold every sample of "
+                     "its range)\n",
+                     o.program.c_str(), int(r.stats.completed * 100));
+        std::fflush(nullptr);
+        std::exit(130);
+    }
+    rt::write_slice(o.output, make_slice(settings, r, scene_fingerprint));
+}
+
+// Which cameras after `camera` (0-based) were not rendered: "" when none, else "; camera 3 not
+// rendered" or "; cameras 2 to 4 not rendered".
+inline std::string cameras_left(size_t camera, size_t cameras) {
+    if (camera + 1 >= cameras) return "";
+    if (camera + 2 == cameras) return "; camera " + std::to_string(cameras) + " not rendered";
+    return "; cameras " + std::to_string(camera + 2) + " to " + std::to_string(cameras) + " not rendered";
+}
+
+// Ctrl-C between two cameras: the images written so far stay, the rest are not rendered.
+inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
+    if (camera == 0 || !interrupt_requested.load()) return;
+    std::fprintf(stderr, "render: interrupted after camera %zu%s\n", camera, cameras_left(camera - 1, cameras).c_str());
+    std::fflush(nullptr);
+    std::exit(130);
+}
+
+// A course scene through the path tracer (xml_path_settings says how), camera by camera.
+inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
+                                   const std::vector<std::string>& outputs) {
+    rt::render_settings settings = xml_path_settings(opt);
     catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
     settings.stop = &interrupt_requested;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
-    std::vector<rt::point_light> lights = scene.lights;
-    for (rt::point_light& l : lights) l.intensity *= rt::pi;
-    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const std::vector<rt::point_light> lights = xml_path_lights(scene);
+    const size_t cameras = scene.cameras.size();
+    for (size_t i = 0; i < cameras; ++i) {
+        exit_if_interrupted_before(i, cameras);
         rt::render_result r = rt::path_trace(scene.world, rt::view_camera_frame(scene.cameras[i]), env, settings, lights);
         rt::write_whitted_image(outputs[i], r.img);
         if (r.stats.interrupted) {
             std::fprintf(stderr,
                          "render: interrupted after %d %% of camera %zu (average %.1f samples per pixel); wrote %s "
-                         "with the samples taken\n",
-                         int(r.stats.completed * 100), i + 1, r.stats.mean_pixel_samples(), outputs[i].c_str());
+                         "with the samples taken%s\n",
+                         int(r.stats.completed * 100), i + 1, r.stats.mean_pixel_samples(), outputs[i].c_str(),
+                         cameras_left(i, cameras).c_str());
+            std::fflush(nullptr);
             std::exit(130);
         }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
@@ -147,14 +255,29 @@ inline void render_xml_scene(const options& opt, const rt::whitted_scene& scene,
         render_xml_path_traced(opt, scene, outputs);
         return;
     }
-    rt::whitted_options options;
-    options.threads = opt.threads.value_or(0);
-    options.cull_back_faces = opt.cull_back_faces.value_or(false);
-    options.quiet = opt.quiet;
+    rt::whitted_options options = whitted_settings(opt);
+    // Ctrl-C: the current camera's image with the pixels traced so far (the others black), then
+    // exit 130, as the path tracer does.
+    catch_interrupts();
+    options.stop = &interrupt_requested;
     rt::whitted_renderer renderer(scene, options);
-    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const size_t cameras = scene.cameras.size();
+    for (size_t i = 0; i < cameras; ++i) {
+        exit_if_interrupted_before(i, cameras);
         rt::whitted_render r = renderer.render(i);
         rt::write_whitted_image(outputs[i], r.img);
+        if (r.stats.interrupted) {
+            const uint64_t pixels = uint64_t(r.img.width()) * uint64_t(r.img.height());
+            std::fprintf(stderr,
+                         "render: interrupted after %d %% of camera %zu (%llu of %llu pixels traced, the other %llu "
+                         "black); wrote %s with the pixels traced%s\n",
+                         int(r.stats.completed * 100), i + 1, static_cast<unsigned long long>(r.stats.samples),
+                         static_cast<unsigned long long>(pixels),
+                         static_cast<unsigned long long>(r.stats.pixels_without_samples), outputs[i].c_str(),
+                         cameras_left(i, cameras).c_str());
+            std::fflush(nullptr);
+            std::exit(130);
+        }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
     }
 }
@@ -174,7 +297,15 @@ inline rt::scene_description read_text_scene(const options& opt) {
 }
 
 inline void render_text_scene(const options& opt, const rt::scene_description& scene) {
-    write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
+    if (!opt.samples) {
+        write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
+        return;
+    }
+    // The fingerprint of what was read, taken now: the files could change during a long render.
+    const std::string fingerprint = rt::scene_fingerprint(scene.files);
+    const rt::render_settings settings = text_scene_settings(opt, scene.cam);
+    rt::render_result r = rt::path_trace(scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights);
+    write_slice_output(opt, settings, r, fingerprint);
 }
 
 } // namespace app

@@ -33,6 +33,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rt {
@@ -248,25 +249,35 @@ inline render_result render(const camera& cam, const hittable& world, const std:
     return path_trace(world, cam.frame(), cam.sky(), cam.settings(), point_lights);
 }
 
+// Renders with a user-supplied ray_color(const ray&, const hittable&) -> color instead of the
+// path tracer, as camera::render_image(world, ray_color) does, and returns the statistics too:
+// samples and rays taken and, when cam.stop ended the render early, how far it got.
+template <class RayColor, class = std::enable_if_t<std::is_invocable_r_v<color, RayColor&, const ray&, const hittable&>>>
+render_result render(const camera& cam, const hittable& world, RayColor ray_color);
+
 inline image camera::render_image(const hittable& world) const { return rt::render(*this, world).img; }
+
+template <class RayColor, class>
+render_result render(const camera& cam, const hittable& world, RayColor ray_color) {
+    auto start = std::chrono::steady_clock::now();
+    const camera_frame f = cam.frame();
+    const render_settings s = cam.settings();
+    return render_samples(
+        f.width, f.height, s,
+        [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
+            // Every ray has a time, as in book 2: the shader's world may move.
+            ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng, /*with_time=*/true);
+            ++rays;
+            detail::scoped_sample_rng guard(rng); // ray_color may call random_double()
+            color c = ray_color(ray(f.position + r.origin.to_double(), r.dir.to_double(), r.time), world);
+            return vec3f(c);
+        },
+        start);
+}
 
 template <class RayColor>
 image camera::render_image(const hittable& world, RayColor ray_color) const {
-    auto start = std::chrono::steady_clock::now();
-    const camera_frame f = frame();
-    const render_settings s = settings();
-    return render_samples(
-               f.width, f.height, s,
-               [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-                   // Every ray has a time, as in book 2: the shader's world may move.
-                   ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng, /*with_time=*/true);
-                   ++rays;
-                   detail::scoped_sample_rng guard(rng); // ray_color may call random_double()
-                   color c = ray_color(ray(f.position + r.origin.to_double(), r.dir.to_double(), r.time), world);
-                   return vec3f(c);
-               },
-               start)
-        .img;
+    return rt::render(*this, world, ray_color).img;
 }
 
 inline void camera::render(const hittable& world) const {

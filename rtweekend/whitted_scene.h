@@ -45,6 +45,10 @@ struct whitted_scene {
     std::vector<point_light> lights;
     std::vector<view_camera> cameras;
     hittable_list world;                // spheres, triangles and meshes with whitted_material materials
+    // The files the scene was read from (load_xml_scene): the XML file, then its PLY meshes. Empty
+    // for a scene built in code. A fingerprint of the scene hashes them (render_mpi's ranks check
+    // that they all read the same scene).
+    std::vector<std::string> files;
 };
 
 } // namespace rt

@@ -13,6 +13,8 @@
 #include <limits>
 #include <memory>
 
+namespace test_aabb {
+
 using namespace rt;
 
 namespace {
@@ -125,3 +127,5 @@ TEST_CASE("bounding_box of the built-in hittables, the list, and a book-1 shape"
     list.add(std::make_shared<book1_shape>());
     CHECK(list.bounding_box().z.max == inf_d);
 }
+
+} // namespace test_aabb

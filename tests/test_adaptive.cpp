@@ -20,6 +20,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_adaptive {
+
 using namespace rt;
 
 namespace {
@@ -55,7 +57,7 @@ double mean_count(const std::vector<int>& counts, int w, int x0, int x1, int h) 
 
 } // namespace
 
-TEST_CASE("adaptive: a pixel whose samples are all equal stops at the minimum") {
+TEST_CASE("adaptive: a pixel whose samples are all equal stops at the minimum" * doctest::test_suite("threads")) {
     // An empty world under a constant background: every sample of every pixel is the same
     // colour, the variance is 0, so each pixel stops at exactly adaptive_min_samples.
     hittable_list world;
@@ -76,7 +78,8 @@ TEST_CASE("adaptive: a pixel whose samples are all equal stops at the minimum") 
     CHECK(all.stats.samples_saved == 0);
 }
 
-TEST_CASE("adaptive: a constant region stops at the minimum, a noisy one takes more, in proportion to its noise") {
+TEST_CASE("adaptive: a constant region stops at the minimum, a noisy one takes more, in proportion to its noise"
+          * doctest::test_suite("threads")) {
     // Three vertical bands of the same mean 0.5: constant; noise of standard deviation 0.05;
     // noise of 0.2 (uniform, light-tailed). Same value and cost everywhere, so Neyman's
     // allocation gives the noisy bands samples in proportion to their standard deviations: 4 to 1
@@ -110,7 +113,7 @@ TEST_CASE("adaptive: a constant region stops at the minimum, a noisy one takes m
     CHECK(r.stats.samples_saved == uint64_t(w) * h * 4096 - taken);
 }
 
-TEST_CASE("adaptive: heavy-tailed samples stay unbiased") {
+TEST_CASE("adaptive: heavy-tailed samples stay unbiased" * doctest::test_suite("threads")) {
     // Each sample is 8 with probability 1/16, else 0: mean exactly 0.5, standard deviation 1.94,
     // and most pixels' first 16 samples are all 0. A rule that trusted a pixel's own samples
     // would see no variance there, stop, and leave the pixel at 0: a bias of -0.2 over the image.
@@ -138,7 +141,7 @@ TEST_CASE("adaptive: heavy-tailed samples stay unbiased") {
     CHECK(mean_count(counts, w, 0, 14, h) == 16);
 }
 
-TEST_CASE("adaptive: the path tracer's furnace image stays unbiased") {
+TEST_CASE("adaptive: the path tracer's furnace image stays unbiased" * doctest::test_suite("threads")) {
     // A Lambertian sphere (albedo 0.5) in a white furnace: a sample is exactly 0.5 (sphere) or
     // 1 (background). Pixels wholly on the sphere or wholly off it, and their neighbours, have
     // zero variance and stop at 16 samples; pixels near the outline keep sampling.
@@ -170,7 +173,7 @@ TEST_CASE("adaptive: the path tracer's furnace image stays unbiased") {
     CHECK(max_diff < 0.1);
 }
 
-TEST_CASE("adaptive: identical images at 1, 2 and 3 threads") {
+TEST_CASE("adaptive: identical images at 1, 2 and 3 threads" * doctest::test_suite("threads")) {
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.8, 0.6, 0.4), 0.3)));
     world.add(std::make_shared<sphere>(point3(0, -101, -3), 100, std::make_shared<lambertian>(color(0.5, 0.5, 0.5))));
@@ -188,7 +191,7 @@ TEST_CASE("adaptive: identical images at 1, 2 and 3 threads") {
     }
 }
 
-TEST_CASE("adaptive: samples_per_pixel below the minimum, and a one-pixel image") {
+TEST_CASE("adaptive: samples_per_pixel below the minimum, and a one-pixel image" * doctest::test_suite("threads")) {
     // The minimum is capped by samples_per_pixel; a lone pixel has no neighbours and uses its own
     // samples.
     hittable_list world;
@@ -205,7 +208,7 @@ TEST_CASE("adaptive: samples_per_pixel below the minimum, and a one-pixel image"
     CHECK(counts[0] <= 512);
 }
 
-TEST_CASE("adaptive: invalid settings are scene errors") {
+TEST_CASE("adaptive: invalid settings are scene errors" * doctest::test_suite("threads")) {
     hittable_list world;
     camera cam = adaptive_camera(24, 16, 64, -0.1);
     CHECK_THROWS_AS(render(cam, world), scene_error);
@@ -215,3 +218,5 @@ TEST_CASE("adaptive: invalid settings are scene errors") {
     cam.adaptive_min_samples = 1;
     CHECK_THROWS_AS(render(cam, world), scene_error);
 }
+
+} // namespace test_adaptive

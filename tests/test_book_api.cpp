@@ -29,6 +29,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_book_api {
+
 using namespace rt;
 
 namespace {
@@ -411,7 +413,7 @@ TEST_CASE("quad: a quad flat in an axis plane has a padded box, and keeps its ma
     CHECK(rec.mat == mat);
 }
 
-TEST_CASE("quad::pdf_value: distance^2 / (|cos| area), integrating to 1; random() is uniform on it") {
+TEST_CASE("quad::pdf_value: distance^2 / (|cos| area), integrating to 1, random() is uniform on it") {
     // The 2 x 2 square centred on (0, 0, -4), facing +z: area 4.
     quad q(point3(-1, -1, -4), vec3(2, 0, 0), vec3(0, 2, 0), nullptr);
     const point3 o(0, 0, 0);
@@ -451,7 +453,7 @@ TEST_CASE("quad::pdf_value: distance^2 / (|cos| area), integrating to 1; random(
 
 // --- box -------------------------------------------------------------------------------------------
 
-TEST_CASE("box: six quads with outward normals; a ray from outside hits the front face") {
+TEST_CASE("box: six quads with outward normals, a ray from outside hits the front face") {
     auto white = std::make_shared<lambertian>(color(0.73, 0.73, 0.73));
     // Corners given in mixed order: the box is [0, 1] x [0, 2] x [0, 1] either way.
     std::shared_ptr<hittable_list> sides = box(point3(1, 0, 1), point3(0, 2, 0), white);
@@ -519,7 +521,7 @@ TEST_CASE("translate: hits the moved object, moves its point, keeps its normal a
     CHECK(b.z.max == 1);
 }
 
-TEST_CASE("rotate_y: 90 degrees takes +x to -z; normals turn with the object") {
+TEST_CASE("rotate_y: 90 degrees takes +x to -z, normals turn with the object") {
     // A sphere at object (3, 0, 0) sits at world (0, 0, -3).
     auto s = std::make_shared<sphere>(point3(3, 0, 0), 0.5, nullptr);
     rotate_y turned(s, 90);
@@ -560,7 +562,7 @@ TEST_CASE("rotate_y: 90 degrees takes +x to -z; normals turn with the object") {
     CHECK(b.z.max == doctest::Approx(p).epsilon(1e-9));
 }
 
-TEST_CASE("rotate_y: 30 degrees, hit point and normal by hand; the box around the turned box") {
+TEST_CASE("rotate_y: 30 degrees, hit point and normal by hand, the box around the turned box") {
     // A sphere at object (2, 0, 0): world (2 cos 30, 0, -2 sin 30) = (sqrt 3, 0, -1). A ray
     // straight down onto it hits its top, normal +y.
     auto s = std::make_shared<sphere>(point3(2, 0, 0), 0.5, nullptr);
@@ -758,7 +760,7 @@ TEST_CASE("metal, dielectric, conductor: book 3's scatter skips the pdf with the
     check_near(unit_vector(srec.skip_pdf_ray.direction()), unit_vector(vec3(1, 0, 1)), 1e-6);
 }
 
-TEST_CASE("diffuse_light: one-sided by default, two-sided on request; scatters nothing") {
+TEST_CASE("diffuse_light: one-sided by default, two-sided on request, scatters nothing") {
     hit_record rec = front_hit_at_origin();
     const ray r_in(point3(0, 0, 1), vec3(0, 0, -1));
     diffuse_light one(color(15, 15, 15));
@@ -825,3 +827,5 @@ TEST_CASE("solid_color: the same colour everywhere, from a colour or three compo
     CHECK(exact_solid_color(&other) == nullptr);
     CHECK(exact_solid_color(nullptr) == nullptr);
 }
+
+} // namespace test_book_api

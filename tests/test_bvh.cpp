@@ -9,6 +9,8 @@
 
 #include <vector>
 
+namespace test_bvh {
+
 using namespace rt;
 
 namespace {
@@ -184,3 +186,5 @@ TEST_CASE("bvh: leaf references round-trip their fields") {
     }
     CHECK_FALSE(bvh_ref::is_leaf(bvh_ref::max_nodes - 1));
 }
+
+} // namespace test_bvh

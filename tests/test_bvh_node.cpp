@@ -15,6 +15,8 @@
 #include <memory>
 #include <random>
 
+namespace test_bvh_node {
+
 using namespace rt;
 using namespace test;
 
@@ -104,7 +106,7 @@ TEST_CASE("bvh_node: the renderer sees through it: the same bits as the plain li
     CHECK(same_bits(render_checked(cam, list).img, render_checked(cam, wrapped).img));
 }
 
-TEST_CASE("bvh_node: a node over one object holds it on both sides; the renderer takes it once") {
+TEST_CASE("bvh_node: a node over one object holds it on both sides, the renderer takes it once") {
     auto mat = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
     hittable_list one(std::make_shared<sphere>(point3(0, 0, 0), 1, mat));
     hittable_list world(std::make_shared<bvh_node>(one));
@@ -114,3 +116,5 @@ TEST_CASE("bvh_node: a node over one object holds it on both sides; the renderer
     for (int i = 0; i < 3; ++i) three.add(std::make_shared<sphere>(point3(3 * i, 0, 0), 1, mat));
     CHECK(compile_scene(hittable_list(std::make_shared<bvh_node>(three)), point3(0, 0, 5)).spheres.count == 3);
 }
+
+} // namespace test_bvh_node

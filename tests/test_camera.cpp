@@ -15,6 +15,8 @@
 #include <string>
 #include <utility>
 
+namespace test_camera {
+
 using namespace rt;
 
 namespace {
@@ -323,3 +325,5 @@ TEST_CASE("camera::render_image reports invalid settings as scene_error too") {
     c.threads = -1;
     CHECK_THROWS_AS((void)c.render_image(world), scene_error);
 }
+
+} // namespace test_camera

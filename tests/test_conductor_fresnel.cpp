@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+namespace test_conductor_fresnel {
+
 using namespace rt;
 
 namespace {
@@ -124,7 +126,7 @@ TEST_CASE("fresnel: at 45 degrees R_p = R_s^2, with R_s = (9 - 2 sqrt 14) / (9 +
     CHECK((Rs + Rs * Rs) / 2 == doctest::Approx(0.05023991101223595).epsilon(1e-13));
 }
 
-TEST_CASE("fresnel: grazing incidence reflects everything; total internal reflection returns exactly 1") {
+TEST_CASE("fresnel: grazing incidence reflects everything, total internal reflection returns exactly 1") {
     for (double eta : {1.33, 1.5, 2.4, 1 / 1.5}) {
         CAPTURE(eta);
         CHECK(fresnel_dielectric(0, eta) == 1);
@@ -610,3 +612,5 @@ TEST_CASE("fresnel: Beer's law through an absorbing slab, multiple internal refl
         }
     }
 }
+
+} // namespace test_conductor_fresnel

@@ -14,6 +14,8 @@
 #include <memory>
 #include <string>
 
+namespace test_cover_scene {
+
 using namespace rt;
 
 namespace {
@@ -85,3 +87,5 @@ TEST_CASE("make_cover_camera is the book's cover camera") {
     CHECK(cam.height() == 675); // 1200 * 9 / 16
     CHECK(cam.max_depth == 50);
 }
+
+} // namespace test_cover_scene

@@ -20,6 +20,16 @@
 #include <string>
 #include <vector>
 
+#if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#endif
+
+namespace test_exr {
+
 using namespace rt;
 
 namespace {
@@ -31,12 +41,6 @@ void check_error(const std::string& path, const std::string& problem) {
 } // namespace
 
 #if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
-
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfOutputFile.h>
 
 namespace {
 
@@ -272,3 +276,5 @@ TEST_CASE("exr.h: without the OpenEXR library, .exr gives the not-built error") 
 }
 
 #endif
+
+} // namespace test_exr

@@ -38,6 +38,8 @@
 
 #include <sys/stat.h>
 
+namespace test_fuzz_inputs {
+
 using namespace rt;
 
 namespace {
@@ -208,7 +210,7 @@ TEST_CASE("fuzz: scene files: NUL bytes, nothing to render, a device as a mesh, 
 
 // --- 5. meshes -------------------------------------------------------------------------------------
 
-TEST_CASE("fuzz: PLY values must fit their declared type; write_ply refuses what a float cannot hold") {
+TEST_CASE("fuzz: PLY values must fit their declared type, write_ply refuses what a float cannot hold") {
     check_refused([] { load_ply(fuzz_dir + "ply_uchar_out_of_range.ply", nullptr); },
                   {"ply_uchar_out_of_range.ply:12: vertex 0: '-70000' (property 'red') does not fit its type uchar"});
     check_refused([] { load_ply(fuzz_dir + "ply_float_out_of_range.ply", nullptr); },
@@ -701,3 +703,5 @@ TEST_CASE("fuzz: app::parse_arguments throws what app::parse prints and exits wi
     CHECK(o.quiet);
     CHECK(o.positional == std::vector<std::string>{"s.txt"});
 }
+
+} // namespace test_fuzz_inputs

@@ -21,6 +21,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_glossy {
+
 using namespace rt;
 
 namespace {
@@ -106,7 +108,7 @@ TEST_CASE("fresnel_average: the share of diffuse light a smooth dielectric refle
     CHECK(std::fabs(fresnel_average(1.5) - 0.0926) < 0.002);
 }
 
-TEST_CASE("plastic: reflects F(cos) + albedo (1 - F(cos)); a white plastic reflects everything") {
+TEST_CASE("plastic: reflects F(cos) + albedo (1 - F(cos)), a white plastic reflects everything") {
     pcg32 rng(17);
     for (double n : {1.5, 2.0}) {
         for (color albedo : {color(1, 1, 1), color(0.8, 0.3, 0.05)}) {
@@ -196,7 +198,7 @@ TEST_CASE("blinn_phong: the glossy lobe reflects at most ks, exactly its closed 
     }
 }
 
-TEST_CASE("blinn_phong: diffuse + specular above 1 is scaled down per channel; the surface stays within 1") {
+TEST_CASE("blinn_phong: diffuse + specular above 1 is scaled down per channel, the surface stays within 1") {
     const compiled_material m = compile_material(blinn_phong(color(0.8, 0.2, 0.5), color(1.0, 0.5, 0.3), 30));
     CHECK(m.albedo.x == doctest::Approx(0.8 / 1.8));
     CHECK(m.specular.x == doctest::Approx(1.0 / 1.8));
@@ -289,3 +291,5 @@ TEST_CASE("course scenes: a plain material with a specular term is blinn_phong t
     CHECK(renderer.compiled().materials[0].kind == material_kind::lambertian);
     CHECK(renderer.compiled().materials[0].albedo.x == doctest::Approx(0.5));
 }
+
+} // namespace test_glossy

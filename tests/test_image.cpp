@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_image {
+
 using namespace rt;
 namespace fs = std::filesystem;
 
@@ -291,3 +293,5 @@ TEST_CASE("check_output_path: refuses what write_image would refuse, touches not
     std::sort(names.begin(), names.end());
     CHECK(names == std::vector<std::string>{"old.ppm", "taken.bmp"});
 }
+
+} // namespace test_image

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+namespace test_image_read {
+
 using namespace rt;
 namespace fs = std::filesystem;
 
@@ -248,3 +250,5 @@ TEST_CASE("read_image: the committed cover reference is the 400x225 linear cover
     CHECK(sum[1] / pixels == doctest::Approx(0.347191).epsilon(1e-5));
     CHECK(sum[2] / pixels == doctest::Approx(0.440283).epsilon(1e-5));
 }
+
+} // namespace test_image_read

@@ -17,6 +17,8 @@
 #include <random>
 #include <sstream>
 
+namespace test_instances {
+
 using namespace rt;
 
 namespace {
@@ -289,7 +291,8 @@ TEST_CASE("instances: rays spawned from instanced convex shapes never hit them a
     }
 }
 
-TEST_CASE("instances: a moving sphere inside an instance moves with the ray's time, and renders are deterministic") {
+TEST_CASE("instances: a moving sphere inside an instance moves with the ray's time, and renders are deterministic"
+          * doctest::test_suite("threads")) {
     auto mover = std::make_shared<sphere>(point3(0, 0, 0), point3(1, 0, 0), 0.5, grey());
     hittable_list world;
     world.add(std::make_shared<scale>(mover, vec3(2, 1, 1))); // centre (0,0,0) -> (2,0,0), an ellipsoid
@@ -362,3 +365,5 @@ TEST_CASE("instances: a textured shape inside an instance has the (u, v) of its 
         CHECK(v == doctest::Approx(p.v).epsilon(1e-5));
     }
 }
+
+} // namespace test_instances

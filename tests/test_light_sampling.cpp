@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+namespace test_light_sampling {
+
 using namespace rt;
 
 namespace {
@@ -649,7 +651,7 @@ TEST_CASE("alias_table: every float uniform enumerated gives the pmf to the unif
     }
 }
 
-TEST_CASE("alias_table: chi-square of sample() counts for skewed weights; zero weights never drawn") {
+TEST_CASE("alias_table: chi-square of sample() counts for skewed weights, zero weights never drawn") {
     // 2000 weights over 8 decades, a fifth of them zero: the O(n) build, and draws from pcg32.
     pcg32 rng(77);
     std::vector<double> w(2000);
@@ -678,3 +680,5 @@ TEST_CASE("alias_table: chi-square of sample() counts for skewed weights; zero w
     CHECK(w[t.sample(0.0f)] > 0);
     CHECK(w[t.sample(0x1.fffffep-1f)] > 0);
 }
+
+} // namespace test_light_sampling

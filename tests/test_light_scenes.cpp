@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_light_scenes {
+
 using namespace rt;
 
 namespace {
@@ -83,3 +85,5 @@ TEST_CASE("scene file: quad, box, lights, transforms and background") {
     CHECK(c.quads.count == 8);
     CHECK(c.lights.lights.size() == 3);
 }
+
+} // namespace test_light_scenes

@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_lights {
+
 using namespace rt;
 
 namespace {
@@ -256,3 +258,5 @@ TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it a
     render_result r_bsdf = test::render_checked(cam, world);
     check_mean(r_bsdf.img, expected, "bsdf (no roulette)");
 }
+
+} // namespace test_lights

@@ -15,6 +15,8 @@
 
 #include <unistd.h>
 
+namespace test_loop_subdivision {
+
 using app::tri_mesh;
 using rt::vec3;
 
@@ -184,7 +186,7 @@ TEST_CASE("loop: non-manifold and degenerate inputs are refused with the vertex 
     CHECK_THROWS_AS(app::loop_subdivide(tetrahedron(), -1), rt::scene_error);
 }
 
-TEST_CASE("loop: an unused vertex keeps its position; duplicated positions are not welded") {
+TEST_CASE("loop: an unused vertex keeps its position, duplicated positions are not welded") {
     tri_mesh m;
     // Two triangles forming a square, but the diagonal's vertices repeated under new indices:
     // the index topology is two separate triangles, each all boundary.
@@ -241,3 +243,5 @@ TEST_CASE("loop: malformed OBJ files are refused with the file name") {
     CHECK_THROWS_WITH_AS(app::read_obj((dir.path / "missing.obj").string()), doctest::Contains("missing.obj"),
                          rt::scene_error);
 }
+
+} // namespace test_loop_subdivision

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstdlib>
 
+namespace test_material {
+
 using namespace rt;
 
 namespace {
@@ -401,3 +403,5 @@ TEST_CASE("the base material absorbs everything") {
     ray out;
     CHECK_FALSE(m.scatter(ray(point3(0, 0, 0), vec3(1, 0, 0)), rec, c, out));
 }
+
+} // namespace test_material

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+namespace test_material_contract {
+
 using namespace rt;
 
 namespace {
@@ -117,7 +119,7 @@ void check_binomial(long hits, long n, double p) {
 
 } // namespace
 
-TEST_CASE("material contract: sample's value is eval / pdf at the sampled direction; delta lobes have no density") {
+TEST_CASE("material contract: sample's value is eval / pdf at the sampled direction, delta lobes have no density") {
     pcg32 rng(101);
     for (const named_material& nm : all_materials()) {
         for (bool front : {true, false}) {
@@ -472,3 +474,5 @@ TEST_CASE("material contract: Beer's law inside absorbing glass, and nothing els
     }
     CHECK_FALSE(compile_material(dielectric(1.5, color(0, 0, 0))).absorbs_inside()); // clear glass
 }
+
+} // namespace test_material_contract

@@ -20,6 +20,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_mesh {
+
 using namespace rt;
 
 namespace {
@@ -73,7 +75,7 @@ void check_obj_error(const test::scratch_dir& dir, const std::string& text, cons
 
 } // namespace
 
-TEST_CASE("load_obj: quads become triangles; positions, normals and uvs are kept") {
+TEST_CASE("load_obj: quads become triangles, positions, normals and uvs are kept") {
     test::scratch_dir dir("cube");
     auto mat = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
     auto mesh = load_obj(dir.write("cube.obj", cube_obj), mat);
@@ -249,7 +251,7 @@ TEST_CASE("render: a convex mesh in a white furnace renders its albedo exactly, 
     }
 }
 
-TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads") {
+TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads" * doctest::test_suite("threads")) {
     auto bunny = load_obj(mesh_dir + "/bunny_npm.obj", std::make_shared<metal>(color(0.8, 0.6, 0.4), 0.2));
     hittable_list world;
     world.add(bunny);
@@ -268,3 +270,5 @@ TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads
     CHECK(one.stats.nonfinite_samples == 0);
     CHECK(one.img.data() == two.img.data());
 }
+
+} // namespace test_mesh

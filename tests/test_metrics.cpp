@@ -10,6 +10,8 @@
 #include <limits>
 #include <string>
 
+namespace test_metrics {
+
 using namespace rt;
 
 namespace {
@@ -125,7 +127,7 @@ TEST_CASE("metrics: 8-bit metrics after the book's encoding, by hand") {
     CHECK(c.bias[2] == near(10));
 }
 
-TEST_CASE("metrics: NaN and Inf are counted; left out of linear metrics, encoded in 8-bit ones") {
+TEST_CASE("metrics: NaN and Inf are counted, left out of linear metrics, encoded in 8-bit ones") {
     // a   = (NaN, 0.5, 0.5)  (0.5,  0.5, 0.5)
     // ref = (0.5, 0.5, inf)  (0.25, 0.5, 0.5)
     // Linear: the NaN (a) and the inf (ref) channels are left out; 4 values remain, one differing
@@ -209,3 +211,5 @@ TEST_CASE("metrics: images of different sizes or empty images throw, naming the 
     check_throws_with([&] { compare_loaded(loaded(a, true), loaded(b, false)); }, {"3x2", "2x3"});
     check_throws_with([&] { compare_linear(image(), image()); }, {"empty", "0x0"});
 }
+
+} // namespace test_metrics

@@ -19,6 +19,8 @@
 #include <memory>
 #include <random>
 
+namespace test_motion {
+
 using namespace rt;
 
 namespace {
@@ -172,7 +174,8 @@ TEST_CASE("motion: a pixel the moving emitter covers for a quarter of the shutte
     CHECK(std::fabs(r.img.pixel(0, 0).x() - expected_value) < 4 * sigma);
 }
 
-TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, and differs from a still one") {
+TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, and differs from a still one"
+          * doctest::test_suite("threads")) {
     auto scene_with = [](bool moving) {
         hittable_list world;
         world.add(std::make_shared<sphere>(point3(0, -100.5, -1), 100, grey()));
@@ -195,3 +198,5 @@ TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, 
     CHECK(test::same_bits(one.img, two.img));
     CHECK_FALSE(test::same_bits(one.img, test::render_checked(cam, still).img));
 }
+
+} // namespace test_motion

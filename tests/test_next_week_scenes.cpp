@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_next_week_scenes {
+
 using namespace rt;
 
 namespace {
@@ -118,3 +120,5 @@ TEST_CASE("scene files: media, moving spheres, groups and instances") {
     CHECK_THROWS_WITH_AS(parse("moving_sphere 0 0 0 1 1 1 -1 lambertian 1 1 1 0 0\n"),
                          doctest::Contains("radius must be positive"), scene_error);
 }
+
+} // namespace test_next_week_scenes

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_plot_svg {
+
 using app::plot_layout;
 using app::plot_options;
 using app::plot_series;
@@ -159,7 +161,7 @@ TEST_CASE("plot_svg: x = 1..1000, y = 1/x: half-decade padding, and decades map 
     }
 }
 
-TEST_CASE("plot_svg: a tick label at every decade, under its grid line; none at the half-decade ends") {
+TEST_CASE("plot_svg: a tick label at every decade, under its grid line, none at the half-decade ends") {
     const plot_options options{"", "", ""};
     const std::vector<plot_series> series{one_over_x()};
     const plot_layout l = app::loglog_layout(series, options);
@@ -175,7 +177,7 @@ TEST_CASE("plot_svg: a tick label at every decade, under its grid line; none at 
     CHECK(y_labels == std::set<std::string>{"0.001", "0.01", "0.1", "1"});
 }
 
-TEST_CASE("plot_svg: labels like 1e-5 and 10000 on long axes; crowded decades are labelled evenly, far enough apart") {
+TEST_CASE("plot_svg: labels like 1e-5 and 10000 on long axes, crowded decades are labelled evenly, far enough apart") {
     const plot_options options{"", "", ""};
     const std::vector<plot_series> series{{"wide", {1e-6, 1e6}, {1e-5, 1e4}}};
     const plot_layout l = app::loglog_layout(series, options);
@@ -198,7 +200,7 @@ TEST_CASE("plot_svg: labels like 1e-5 and 10000 on long axes; crowded decades ar
     }
 }
 
-TEST_CASE("plot_svg: legend names and title are escaped; custom colours used; output well-formed and deterministic") {
+TEST_CASE("plot_svg: legend names and title are escaped, custom colours used, output well-formed and deterministic") {
     const plot_options options{"RMSE <vs> time & \"spp\"", "seconds", "RMSE"};
     std::vector<plot_series> series{{"a < b & \"c\"", {1, 10}, {1, 0.1}, "#123456"},
                                     {"the book's code, 10 spp", {3}, {0.5}, "", true}};
@@ -332,3 +334,5 @@ TEST_CASE("plot_svg: no drawable point, x and y of different lengths, or no room
     tiny.width = 120, tiny.height = 80;
     CHECK_THROWS_AS(app::render_loglog_svg({{"fine", {1, 2}, {1, 2}}}, tiny), rt::scene_error);
 }
+
+} // namespace test_plot_svg

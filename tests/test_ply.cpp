@@ -20,6 +20,8 @@
 
 #include <unistd.h>
 
+namespace test_ply {
+
 using namespace rt;
 
 namespace {
@@ -396,3 +398,5 @@ TEST_CASE("ply: bad binary data: truncation, absurd counts, NaN, bad indices") {
                              "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     check_ply_error(dir, huge_ascii, {"18446744073709551615 'face' entries", "truncated"});
 }
+
+} // namespace test_ply

@@ -5,12 +5,19 @@
 // took. One thread makes the order of pixels, and so the point of the stop, deterministic: tiles
 // in order, each pixel of a tile row by row, a whole pass over the image before the next.
 
+#include <rtweekend/camera.h>
 #include <rtweekend/engine/scheduler.h>
+#include <rtweekend/hittable_list.h>
 
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <thread>
+
+namespace test_progress_interrupt {
 
 using namespace rt;
 
@@ -44,11 +51,12 @@ render_settings one_thread(int spp) {
     return s;
 }
 
-// Renders with the stop flag raised at the `stop_at`-th sample (1-based; 0: never).
+// Renders with the stop flag raised at the `stop_at`-th sample (1-based; 0: never). The count is
+// atomic: on several threads every worker adds to it.
 render_result render_stopping_at(render_settings s, uint64_t stop_at) {
     std::atomic<bool> stop{false};
     s.stop = &stop;
-    uint64_t calls = 0;
+    std::atomic<uint64_t> calls{0};
     return render_samples(W, H, s, [&](int x, int, int sample, pcg32&, uint64_t& rays) {
         ++rays;
         if (++calls == stop_at) stop = true;
@@ -65,7 +73,8 @@ int tile0_y(int k) { return k / 16; }
 
 } // namespace
 
-TEST_CASE("render_samples: a stop during a pass leaves each pixel the mean of the samples it took") {
+TEST_CASE("render_samples: a stop during a pass leaves each pixel the mean of the samples it took"
+          * doctest::test_suite("threads")) {
     // Passes of 1, 1, 2, 4 samples (spp 8): 512 + 512 samples, then samples 2 and 3 of each
     // pixel. The flag rises at the first sample of pixel 100 in the third pass (1024 + 2 * 100 + 1):
     // that pixel finishes its two samples, and the render stops before pixel 101.
@@ -95,7 +104,8 @@ TEST_CASE("render_samples: a stop during a pass leaves each pixel the mean of th
     CHECK(r.img.pixel(tile0_x(101), tile0_y(101)).x() == 0.5);
 }
 
-TEST_CASE("render_samples: a stop in the first pass leaves the pixels not reached black, and counted") {
+TEST_CASE("render_samples: a stop in the first pass leaves the pixels not reached black, and counted"
+          * doctest::test_suite("threads")) {
     render_result r = render_stopping_at(one_thread(8), 100); // pixels 0..99 of tile 0 took sample 0
     CHECK(r.stats.interrupted);
     CHECK(r.stats.samples == 100);
@@ -107,7 +117,8 @@ TEST_CASE("render_samples: a stop in the first pass leaves the pixels not reache
     CHECK(same(r.img.pixel(31, 15), color(0, 0, 0)));
 }
 
-TEST_CASE("render_samples: a flag raised before the render takes no sample; one never raised changes nothing") {
+TEST_CASE("render_samples: a flag raised before the render takes no sample, one never raised changes nothing"
+          * doctest::test_suite("threads")) {
     render_settings s = one_thread(8);
     std::atomic<bool> stop{true};
     s.stop = &stop;
@@ -137,9 +148,10 @@ TEST_CASE("render_samples: a flag raised before the render takes no sample; one 
     CHECK(last.img.data() == all.img.data());
 }
 
-TEST_CASE("render_samples: the passes sum a pixel's samples in the order one pass would") {
-    // Values whose double sums depend on the order of additions: the image must equal the mean
-    // summed in sample order 0..spp-1, as the single-pass loop did.
+TEST_CASE("render_samples: the passes give each pixel the sum one pass would" * doctest::test_suite("threads")) {
+    // Values whose floating-point sums depend on the order of additions: the image must be the
+    // mean of the samples' fixed-point values (engine/fixed_point.h), which no order changes:
+    // each sample rounded to units of 2^-32 on its own, the integers added.
     render_settings s = one_thread(13);
     s.threads = 2;
     auto value = [](int x, int y, int sample) {
@@ -151,13 +163,14 @@ TEST_CASE("render_samples: the passes sum a pixel's samples in the order one pas
     });
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
-            double sum = 0;
-            for (int sample = 0; sample < 13; ++sample) sum += value(x, y, sample);
-            CHECK(r.img.data()[(size_t(y) * W + x) * 3] == static_cast<float>(sum / 13));
+            int64_t sum = 0;
+            for (int sample = 0; sample < 13; ++sample) sum += std::llround(std::ldexp(double(value(x, y, sample)), 32));
+            CHECK(r.img.data()[(size_t(y) * W + x) * 3] == static_cast<float>(std::ldexp(double(sum), -32) / 13));
         }
 }
 
-TEST_CASE("render_samples, adaptive: a stop in round 0 keeps the pixels done, black elsewhere") {
+TEST_CASE("render_samples, adaptive: a stop in round 0 keeps the pixels done, black elsewhere"
+          * doctest::test_suite("threads")) {
     render_settings s = one_thread(64);
     s.adaptive_error = 0.01;
     s.adaptive_min_samples = 4;
@@ -174,3 +187,98 @@ TEST_CASE("render_samples, adaptive: a stop in round 0 keeps the pixels done, bl
     CHECK(same(r.img.pixel(11, 0), color(0, 0, 0)));
     CHECK(same(r.img.pixel(0, 1), color(0, 0, 0)));
 }
+
+TEST_CASE("render_samples: a stop raised by another thread during a two-thread render leaves a consistent image"
+          * doctest::test_suite("threads")) {
+    // As Ctrl-C does: the flag is raised from outside the workers, here by a thread that waits
+    // until 3000 of the 32768 samples (spp 64) are taken. Where each worker is then is up to the
+    // scheduler; what must hold: a pixel holds the mean of samples 0..n-1, so its red channel is
+    // (n - 1) / 2, with n a pass boundary (0, 1, 2, 4, ... 64), and the counts add up.
+    render_settings s = one_thread(64);
+    s.threads = 2;
+    std::atomic<bool> stop{false};
+    s.stop = &stop;
+    std::atomic<uint64_t> taken{0};
+    std::thread raiser([&] {
+        while (taken.load() < 3000) std::this_thread::sleep_for(std::chrono::microseconds(50));
+        stop = true;
+    });
+    render_result r = render_samples(W, H, s, [&](int x, int, int sample, pcg32&, uint64_t& rays) {
+        ++rays;
+        ++taken;
+        return vec3f(float(sample), float(x), 1.0f);
+    });
+    raiser.join();
+    CHECK(r.stats.interrupted);
+    CHECK(r.stats.threads == 2);
+    CHECK(r.stats.samples == taken.load());
+    CHECK(r.stats.rays == r.stats.samples);
+    CHECK(r.stats.samples >= 3000);
+    CHECK(r.stats.samples < uint64_t(pixels) * 64);
+    uint64_t sum = 0, black = 0;
+    int fewest = 64, most = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const color c = r.img.pixel(x, y);
+            const int n = c.z() == 0 ? 0 : int(2 * c.x() + 1); // (n - 1) / 2 is exact in float
+            CAPTURE(x);
+            CAPTURE(y);
+            CHECK((n == 0 || (n & (n - 1)) == 0)); // a pass boundary
+            CHECK(c.x() == (n == 0 ? 0.0 : (n - 1) / 2.0));
+            CHECK(c.y() == (n == 0 ? 0 : x));
+            sum += uint64_t(n);
+            black += n == 0;
+            fewest = std::min(fewest, n);
+            most = std::max(most, n);
+        }
+    CHECK(sum == r.stats.samples);
+    CHECK(black == r.stats.pixels_without_samples);
+    CHECK(fewest == r.stats.min_pixel_samples);
+    CHECK(most == r.stats.max_pixel_samples);
+    CHECK(most <= 2 * std::max(fewest, 1)); // the counts differ by the interrupted pass at most
+}
+
+// The milestone apps 02-06 render with their own ray_color through rt::render(cam, world,
+// ray_color), which returns the statistics with the image: the sample counts of an interrupted
+// render are known, as the path tracer's are.
+TEST_CASE("render(cam, world, ray_color): the statistics of a shader render, and of one stopped by cam.stop") {
+    camera cam;
+    cam.image_width = 32;
+    cam.aspect_ratio = 2.0; // 32x16: two 16x16 tiles
+    cam.samples_per_pixel = 4;
+    cam.threads = 1;
+    cam.quiet = true;
+    hittable_list world;
+    std::atomic<bool> stop{false};
+    uint64_t calls = 0, stop_at = 0;
+    auto shade = [&](const ray&, const hittable&) {
+        if (++calls == stop_at) stop = true;
+        return color(0.25, 0.5, 1.0);
+    };
+    // Uninterrupted: every pixel 4 samples, a ray each, the colour exactly.
+    render_result all = render(cam, world, shade);
+    CHECK_FALSE(all.stats.interrupted);
+    CHECK(all.stats.samples == uint64_t(pixels) * 4);
+    CHECK(all.stats.rays == uint64_t(pixels) * 4);
+    CHECK(all.stats.min_pixel_samples == 4);
+    CHECK(same(all.img.pixel(31, 15), color(0.25, 0.5, 1.0)));
+    CHECK(all.img.data() == cam.render_image(world, shade).data()); // the image render_image gives
+
+    // Stopped at the 600th call: passes of 1, 1 and 2 samples per pixel (512, 512, 1024 calls);
+    // call 600 is the 88th of the second pass, pixel 87 of tile 0, which finishes: pixels 0..87
+    // of tile 0 took 2 samples, the rest 1.
+    cam.stop = &stop;
+    calls = 0;
+    stop_at = 600;
+    render_result part = render(cam, world, shade);
+    CHECK(part.stats.interrupted);
+    CHECK(part.stats.samples == 600);
+    CHECK(part.stats.min_pixel_samples == 1);
+    CHECK(part.stats.max_pixel_samples == 2);
+    CHECK(part.stats.pixels_without_samples == 0);
+    CHECK(part.stats.completed == doctest::Approx(600.0 / 2048.0));
+    CHECK(part.stats.mean_pixel_samples() == doctest::Approx(600.0 / 512.0));
+    CHECK(same(part.img.pixel(0, 0), color(0.25, 0.5, 1.0)));
+}
+
+} // namespace test_progress_interrupt

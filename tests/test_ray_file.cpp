@@ -17,6 +17,8 @@
 
 #include <unistd.h>
 
+namespace test_ray_file {
+
 using namespace rt;
 
 namespace {
@@ -188,3 +190,5 @@ TEST_CASE("ray file: write_rays refuses a bad ray and leaves no file behind") {
     unnormalised.rays.push_back({{0, 0, 0}, {0, 0, 2}, 0, 1});
     CHECK_THROWS_WITH_AS(encode_rays(unnormalised), doctest::Contains("length"), scene_error);
 }
+
+} // namespace test_ray_file

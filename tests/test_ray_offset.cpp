@@ -8,6 +8,8 @@
 #include <cmath>
 #include <random>
 
+namespace test_ray_offset {
+
 using namespace rt;
 
 TEST_CASE("offset_ray_origin: hand-computed offsets") {
@@ -53,3 +55,5 @@ TEST_CASE("offset_ray_origin: always moves to the normal's side, by a small amou
         }
     }
 }
+
+} // namespace test_ray_offset

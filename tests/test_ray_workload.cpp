@@ -10,6 +10,8 @@
 #include <limits>
 #include <string>
 
+namespace test_ray_workload {
+
 using rt::vec3;
 using rt::vec3f;
 
@@ -183,7 +185,7 @@ TEST_CASE("workload: deterministic, and indifferent to the orientation of the tr
     }
 }
 
-TEST_CASE("workload: misses give no secondary rays; impossible tracer answers and boxes are refused") {
+TEST_CASE("workload: misses give no secondary rays, impossible tracer answers and boxes are refused") {
     auto miss = [](const rt::ray3f&, float&, vec3f&) { return false; };
     app::workload w = app::make_standard_workload(box_lo, box_hi, miss, 4);
     CHECK(w.primary.rays.size() == 16);
@@ -208,3 +210,5 @@ TEST_CASE("workload: misses give no secondary rays; impossible tracer answers an
     CHECK_THROWS_AS(app::make_standard_workload(box_lo, box_lo, miss, 4), rt::scene_error);          // a point
     CHECK_THROWS_AS(app::make_standard_workload(box_lo, box_hi, miss, 0), rt::scene_error);          // no pixels
 }
+
+} // namespace test_ray_workload

@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_render {
+
 using namespace rt;
 
 namespace {
@@ -186,7 +188,7 @@ camera mixed_camera() {
 
 } // namespace
 
-TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matters") {
+TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matters" * doctest::test_suite("threads")) {
     const hittable_list world = mixed_scene();
     camera cam = mixed_camera();
     cam.threads = 1;
@@ -227,7 +229,7 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
     CHECK(total > 0);
 }
 
-TEST_CASE("render: threads larger than the number of tiles are capped") {
+TEST_CASE("render: threads larger than the number of tiles are capped" * doctest::test_suite("threads")) {
     hittable_list world;
     camera cam = test::test_camera(16, 16, 1, 2); // exactly one 16x16 tile
     cam.threads = 8;
@@ -410,7 +412,8 @@ TEST_CASE("render: a user-written material on a built-in sphere") {
     CHECK(test::same_bits(r.img, render(cam, world).img));
 }
 
-TEST_CASE("render: a user material that calls random_double() is deterministic and unbiased") {
+TEST_CASE("render: a user material that calls random_double() is deterministic and unbiased"
+          * doctest::test_suite("threads")) {
     // Each sample survives with probability 1 - p = 0.7 (value 1) or is absorbed (value 0), so a
     // pixel is k / spp, and the image mean over N = 20*12*16 = 3840 samples is 0.7 within
     // 5 sqrt(0.7 * 0.3 / N) = 0.037.
@@ -452,7 +455,7 @@ TEST_CASE("render: a user material that calls random_double() is deterministic a
     CHECK_FALSE(test::same_bits(render(cam, world).img, r1.img));
 }
 
-TEST_CASE("render: exceptions thrown by user code reach the caller") {
+TEST_CASE("render: exceptions thrown by user code reach the caller" * doctest::test_suite("threads")) {
     camera cam = test::test_camera(40, 40, 1, 2);
     cam.threads = 3;
     hittable_list world;
@@ -514,7 +517,8 @@ TEST_CASE("camera::render_image(world, ray_color): the shader sees the frame's r
         }
 }
 
-TEST_CASE("camera::render_image(world, ray_color): random_double() in a shader is deterministic") {
+TEST_CASE("camera::render_image(world, ray_color): random_double() in a shader is deterministic"
+          * doctest::test_suite("threads")) {
     camera cam = test::test_camera(24, 20, 4, 1);
     hittable_list world;
     auto noise = [](const ray&, const hittable&) {
@@ -592,3 +596,5 @@ TEST_CASE("camera samples: thin-lens rays start on the lens disk and pass throug
             CHECK(std::fabs(c.y() - (y + 0.5)) <= 5 * se);
         }
 }
+
+} // namespace test_render

@@ -11,6 +11,8 @@
 #include <set>
 #include <utility>
 
+namespace test_rng {
+
 using namespace rt;
 
 TEST_CASE("pcg32 matches the reference implementation (pcg32_srandom_r(42, 54))") {
@@ -127,3 +129,5 @@ TEST_CASE("random_int(min, max) is uniform on the integers min..max, also for ne
         }
     }
 }
+
+} // namespace test_rng

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+namespace test_sampler {
+
 using namespace rt;
 
 namespace {
@@ -246,7 +248,8 @@ TEST_CASE("chi-square: every pair of consecutive numbers of a path is uniform ov
     }
 }
 
-TEST_CASE("every sampler: identical images at 1, 2 and 3 threads, adaptive sampling included") {
+TEST_CASE("every sampler: identical images at 1, 2 and 3 threads, adaptive sampling included"
+          * doctest::test_suite("threads")) {
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.8, 0.6, 0.4), 0.3)));
     world.add(std::make_shared<sphere>(point3(1.5, 0, -3), 0.5, std::make_shared<dielectric>(1.5)));
@@ -307,3 +310,5 @@ TEST_CASE("every sampler is unbiased on the cover scene, and Sobol and stratifie
     CHECK(mse[1] < 0.9 * mse[0]);
     CHECK(mse[2] < 0.8 * mse[0]);
 }
+
+} // namespace test_sampler

@@ -10,6 +10,8 @@
 
 #include <cmath>
 
+namespace test_sampling {
+
 using namespace rt;
 
 namespace {
@@ -136,3 +138,5 @@ TEST_CASE("sample_cosine_direction: density cos(theta)/pi about the normal") {
     CHECK(d.y == 0);
     CHECK(d.z == 1);
 }
+
+} // namespace test_sampling

@@ -18,6 +18,8 @@
 #include <memory>
 #include <string>
 
+namespace test_scene {
+
 using namespace rt;
 
 namespace {
@@ -347,3 +349,5 @@ TEST_CASE("compile_scene: a scene of one shape kind is walked by that kind's ker
     }
     CHECK(hits > 200); // about 7 % of random rays meet a sphere here
 }
+
+} // namespace test_scene

@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_scene_io {
+
 using namespace rt;
 
 namespace {
@@ -177,12 +179,27 @@ TEST_CASE("parse_scene: comments, blank lines, inline comments and CRLF are igno
     CHECK(m->fuzz() == 0.25);
     CHECK(m->albedo().x() == 0.8);
 
-    // Empty input: an empty world and the default camera.
-    scene_description empty = parse("");
-    CHECK(empty.world.objects.empty());
-    CHECK(empty.cam.image_width == camera().image_width);
-    // Only comments.
-    CHECK(parse("# nothing\n\n# here\n").world.objects.empty());
+}
+
+TEST_CASE("parse_scene: text without a directive is refused as load_scene refuses an empty file") {
+    // Nothing, blank lines, comments, CRLF: one error line naming the stream, with the words of
+    // load_scene's error (tests/test_fuzz_inputs.cpp checks the file path says the same).
+    for (const char* text : {"", "\n\n   \t \n", "# nothing\n\n# here\n", "# a comment\r\n\r\n", "   # indented\n"}) {
+        CAPTURE(text);
+        std::istringstream in(text);
+        bool threw = false;
+        try {
+            parse_scene(in, "inline.txt");
+        } catch (const scene_error& e) {
+            threw = true;
+            CHECK(std::string(e.what()) == "inline.txt: scene file is empty (no directives)");
+        }
+        CHECK(threw);
+    }
+    // One directive is enough to parse (an empty world is load_scene's own error, not the stream's).
+    scene_description camera_only = parse("# a camera and nothing else\ncamera image_width 64\n");
+    CHECK(camera_only.world.objects.empty());
+    CHECK(camera_only.cam.image_width == 64);
 }
 
 TEST_CASE("parse_scene: every malformed line is 'name:LINE: problem'") {
@@ -322,3 +339,5 @@ TEST_CASE("parse_scene: malformed conductor and glass lines are 'name:LINE: prob
     check_fails("sphere 0 0 -1 0.5 glass 0 0 inf 0 1.5\n", 1, {"'inf'", "finite"});
     check_fails("sphere 0 0 -1 0.5 velvet 0.1 0.2 0.5 0 0\n", 1, {"glass", "conductor"});
 }
+
+} // namespace test_scene_io

@@ -17,6 +17,8 @@
 #include <sstream>
 #include <string>
 
+namespace test_smooth_shading {
+
 using namespace rt;
 
 namespace {
@@ -71,7 +73,7 @@ TEST_CASE("smooth shading: a convex smooth mesh in a white sky reflects exactly 
     CHECK(object > 100);
 }
 
-TEST_CASE("smooth shading: the folded Lambertian weighs every sample by its albedo; eval/pdf agree") {
+TEST_CASE("smooth shading: the folded Lambertian weighs every sample by its albedo, eval/pdf agree") {
     compiled_material m = lambertian(color(0.6, 0.6, 0.6)).compiled();
     const vec3f ng(0, 0, 1);
     const vec3f ns = normalize(vec3f(0.7f, 0, 1)); // tilted 35 degrees
@@ -113,3 +115,5 @@ TEST_CASE("smooth shading: a scene file's `smooth` turns it on, with computed no
     CHECK(smooth_mesh->normals.size() > 0);
     CHECK(smooth_mesh->face_normals.size() == smooth_mesh->faces.size());
 }
+
+} // namespace test_smooth_shading

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_sphere {
+
 using namespace rt;
 
 namespace {
@@ -455,3 +457,5 @@ TEST_CASE("compiled_scene::intersect agrees with sphere::hit on random rays") {
     }
     CHECK(compared > 200);
 }
+
+} // namespace test_sphere

@@ -23,6 +23,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_statistics {
+
 using namespace rt;
 
 namespace {
@@ -816,3 +818,5 @@ TEST_CASE("energy: random scenes of every material never exceed the background, 
         CHECK(negative == 0);
     }
 }
+
+} // namespace test_statistics

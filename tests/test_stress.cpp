@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+namespace test_stress {
+
 using namespace rt;
 
 namespace {
@@ -739,7 +741,7 @@ TEST_CASE("bad input: negative and non-finite albedo, for lambertian and metal")
     test::render_checked(valid_camera(), one(point3(0, 0, -3), 1, lam(-0.0, 0.5, 0.5)));
 }
 
-TEST_CASE("bad input: negative and NaN fuzz; +inf fuzz is clamped to 1 as in the book") {
+TEST_CASE("bad input: negative and NaN fuzz, +inf fuzz is clamped to 1 as in the book") {
     for (double f : {-1e-300, -0.1, -inf_d, nan_d}) {
         CAPTURE(f);
         check_world_rejected(one(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.5, 0.5, 0.5), f)), "fuzz");
@@ -970,3 +972,5 @@ TEST_CASE("bad input: spheres too large for float arithmetic are rejected or ren
         }
     }
 }
+
+} // namespace test_stress

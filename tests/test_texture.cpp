@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+namespace test_texture {
+
 using namespace rt;
 using namespace test;
 
@@ -106,7 +108,7 @@ TEST_CASE("image_texture: sRGB bytes decoded exactly: 0 -> 0, 255 -> 1, 128 -> 0
     CHECK(int(t.image().pixel_data(-3, 9)[0]) == 128);
 }
 
-TEST_CASE("image_texture: nearest pixel i = int(u w), j = int((1 - v) h), clamped; rows top to bottom") {
+TEST_CASE("image_texture: nearest pixel i = int(u w), j = int((1 - v) h), clamped, rows top to bottom") {
     // Pixel (i, j) holds bytes (10 (i + 1), 100 + 50 j, 7), row 0 the top.
     image_texture t((texture_dir + "/rows_4x2.png").c_str());
     REQUIRE(t.image().width() == 4);
@@ -441,3 +443,5 @@ TEST_CASE("render: a textured light is sampled with its texture at the sampled p
     CHECK(sum_a > 0);
     CHECK(sum_a == doctest::Approx(sum_b).epsilon(0.1));
 }
+
+} // namespace test_texture

@@ -21,6 +21,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_triangle {
+
 using namespace rt;
 
 namespace {
@@ -272,3 +274,5 @@ TEST_CASE("triangle: invalid input is rejected, degenerate mesh triangles are sk
         CHECK_THROWS_WITH_AS(compile_scene(w, point3(0, 0, 5)), doctest::Contains("vertex 3"), scene_error);
     }
 }
+
+} // namespace test_triangle

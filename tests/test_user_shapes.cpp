@@ -21,6 +21,8 @@
 #include <memory>
 #include <vector>
 
+namespace test_user_shapes {
+
 using namespace rt;
 
 namespace {
@@ -68,7 +70,7 @@ double brute_force_t(const std::vector<std::shared_ptr<user_sphere>>& shapes, co
 
 } // namespace
 
-TEST_CASE("user shapes with a bounding box go into the BVH; those without one do not") {
+TEST_CASE("user shapes with a bounding box go into the BVH, those without one do not") {
     auto boxed = grid();
     hittable_list world;
     for (auto& s : boxed) world.add(s);
@@ -198,7 +200,7 @@ TEST_CASE("a user shape is found through its box: a box elsewhere hides it, as t
     CHECK(hit.t == doctest::Approx(4).epsilon(1e-6));
 }
 
-TEST_CASE("render: user spheres with and without bounding boxes give the same image") {
+TEST_CASE("render: user spheres with and without bounding boxes give the same image" * doctest::test_suite("threads")) {
     // A small grid of user spheres on a built-in ground under the sky: the BVH changes which
     // shapes are asked, never which hit is nearest, so the images agree bit for bit.
     auto render_grid = [](user_sphere::box_kind box) {
@@ -220,3 +222,5 @@ TEST_CASE("render: user spheres with and without bounding boxes give the same im
     CHECK(with_box.stats.rays == without.stats.rays);
     CHECK(with_box.stats.nonfinite_samples == 0);
 }
+
+} // namespace test_user_shapes

@@ -13,6 +13,8 @@
 #include <random>
 #include <sstream>
 
+namespace test_vec3 {
+
 using namespace rt;
 
 namespace {
@@ -273,3 +275,5 @@ TEST_CASE("interval: empty and universe") {
     CHECK(interval::universe.size() == infinity);
     CHECK(interval::universe.clamp(-5) == -5);
 }
+
+} // namespace test_vec3

@@ -20,6 +20,8 @@
 #include <cmath>
 #include <memory>
 
+namespace test_volume {
+
 using namespace rt;
 
 namespace {
@@ -281,3 +283,5 @@ TEST_CASE("constant_medium: next-event estimation inside fog agrees with materia
     CHECK(se > 0);
     CHECK(std::fabs(nee - bsdf) <= 4 * se);
 }
+
+} // namespace test_volume

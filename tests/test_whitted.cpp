@@ -18,10 +18,15 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace test_whitted {
 
 namespace {
 
@@ -496,7 +501,7 @@ TEST_CASE("whitted: 8-bit encoding clamps to [0, 255] and truncates") {
         }
 }
 
-TEST_CASE("whitted: one and two threads give identical bytes") {
+TEST_CASE("whitted: one and two threads give identical bytes" * doctest::test_suite("threads")) {
     for (const char* name : {"closed.xml", "glass_slab.xml", "sphere.xml", "shadow.xml"}) {
         CAPTURE(name);
         rt::whitted_scene s = load(name);
@@ -610,3 +615,177 @@ TEST_CASE("whitted: a user-written hittable is shaded with the material it repor
     check_centre(b, 50, 25, 12);
     CHECK(int(b[0]) == 0); // a corner misses: the default black background
 }
+
+// The course's rule for glass seen from inside: a hit on a dielectric reached from inside it has
+// no ambient, diffuse or specular term (whitted_options::shade_inside_dielectrics, README).
+TEST_CASE("whitted: a hit on glass from inside gets no local shading (the course's rule), or all of it (option)") {
+    // glass_slab_shaded.xml: glass_slab.xml's slab (n = 2.4, c = (0.05,0.1,0.2), thickness 2) and
+    // wall B (L_B = (250,200,150)), the glass now shaded: ka = (0.3,0.2,0.1), kd = (0.1,0.2,0.3),
+    // ks = 0.5, p = 10, Ia = 100, a light I = 3920 at (0,0,10); MaxRecursionDepth 2. Camera 1's
+    // centre ray goes down -z; R = (1.4/3.4)^2 at normal incidence, T = 1 - R, a = exp(-2c).
+    //   depth 0, F (front face, from outside, at (0,0,-4)): local shading
+    //     S_F = ka Ia + E (kd + ks),  E = 3920 / 14^2 = 20, n.l = n.h = 1 (light, eye, normal on
+    //     the axis: l = v = h = +z): S_F = (30,20,10) + 20 (0.6,0.7,0.8) = (42,34,26);
+    //     its reflection leaves towards +z: black; its refraction (x T) crosses the slab (x a) to
+    //   depth 1, K (back face, from inside): local shading S_in; refraction out (x T) to B: L_B;
+    //     reflection (x R) back across (x a) to
+    //   depth 2, F from inside: local shading S_in only (no bounces left).
+    //   L = S_F + T a (S_in + T L_B + R a S_in)
+    // The course's rule: S_in = 0. Shading inside too: S_in = ka Ia, no more (the shadow ray of a
+    // hit from inside starts inside the glass and the glass blocks it).
+    rt::whitted_scene s = load("glass_slab_shaded.xml");
+    REQUIRE(s.max_recursion_depth == 2);
+    const double n = 2.4;
+    const double R = ((n - 1) / (n + 1)) * ((n - 1) / (n + 1));
+    const double T = 1 - R;
+    const double c[3] = {0.05, 0.1, 0.2}, LB[3] = {250, 200, 150};
+    const double ka[3] = {0.3, 0.2, 0.1}, kd[3] = {0.1, 0.2, 0.3}, ks = 0.5, Ia = 100, E = 3920.0 / (14 * 14);
+    double course[3], shaded[3];
+    for (int ch = 0; ch < 3; ++ch) {
+        const double a = std::exp(-2 * c[ch]);
+        const double S_F = ka[ch] * Ia + E * (kd[ch] + ks);
+        course[ch] = S_F + T * a * (0 + T * LB[ch] + R * a * 0);
+        const double S_in = ka[ch] * Ia;
+        shaded[ch] = S_F + T * a * (S_in + T * LB[ch] + R * a * S_in);
+    }
+    // The numbers: (198.01, 146.93, 95.34) and (224.01, 162.42, 101.54).
+    CHECK(course[0] == doctest::Approx(198.01).epsilon(1e-4));
+    CHECK(shaded[0] == doctest::Approx(224.01).epsilon(1e-4));
+
+    rendered by_default = render(s, 0);
+    REQUIRE(by_default.width == 3);
+    check_pixel(by_default, 1, 1, {course[0], course[1], course[2]});
+
+    rt::whitted_options opt;
+    opt.quiet = true;
+    opt.shade_inside_dielectrics = true;
+    rt::whitted_render r = rt::render_whitted(s, 0, opt);
+    rendered inside_shaded{r.img.width(), r.img.height(), rt::encode_whitted_8bit(r.img), r.img.data()};
+    check_pixel(inside_shaded, 1, 1, {shaded[0], shaded[1], shaded[2]});
+
+    // The rule changes nothing where no ray travels inside glass: glass_slab.xml's glass has no
+    // own shading (ka = kd = ks = 0), and sphere.xml has no glass.
+    for (const char* name : {"glass_slab.xml", "sphere.xml"}) {
+        CAPTURE(name);
+        rt::whitted_scene other = load(name);
+        rt::whitted_render a = rt::render_whitted(other, 0, opt);
+        CHECK(a.img.data() == render(other, 0).raw);
+    }
+}
+
+// Interrupting a Whitted render (whitted_options::stop): a user-written sphere that counts the
+// rays it is asked about raises the flag, as Ctrl-C would, from inside the render.
+namespace {
+class counting_sphere : public rt::hittable {
+  public:
+    counting_sphere(std::shared_ptr<rt::material> m, std::atomic<bool>& stop, uint64_t stop_at)
+        : inner_(rt::point3(0, 0, -5), 1.0, std::move(m)), stop_(stop), stop_at_(stop_at) {}
+    bool hit(const rt::ray& r, rt::interval t, rt::hit_record& rec) const override {
+        if (++calls_ == stop_at_) stop_ = true;
+        return inner_.hit(r, t, rec);
+    }
+    uint64_t calls() const { return calls_.load(); }
+
+  private:
+    rt::sphere inner_;
+    std::atomic<bool>& stop_;
+    uint64_t stop_at_;
+    mutable std::atomic<uint64_t> calls_{0};
+};
+
+struct stopped_whitted {
+    rt::whitted_render r;
+    uint64_t calls = 0;
+};
+
+// A 32x16 image (two 16x16 tiles) in which every camera ray hits the sphere, whose material shows
+// only the ambient light: (10, 20, 30). No light, no bounces: one question to the sphere per pixel.
+stopped_whitted render_stopping(int threads, uint64_t stop_at, bool raised_before = false) {
+    auto m = std::make_shared<rt::whitted_material>();
+    m->ambient = rt::color(1, 1, 1);
+    std::atomic<bool> stop{raised_before};
+    auto sphere = std::make_shared<counting_sphere>(m, stop, stop_at);
+    rt::whitted_scene s;
+    s.background = rt::color(1, 2, 3);
+    s.ambient_light = rt::color(10, 20, 30);
+    s.world.add(sphere);
+    rt::view_camera c;
+    c.left = -0.1;
+    c.right = 0.1;
+    c.bottom = -0.05;
+    c.top = 0.05;
+    c.width = 32;
+    c.height = 16;
+    s.cameras.push_back(c);
+    rt::whitted_options opt;
+    opt.threads = threads;
+    opt.quiet = true;
+    opt.stop = &stop;
+    stopped_whitted out{rt::render_whitted(s, 0, opt), 0};
+    out.calls = sphere->calls();
+    return out;
+}
+
+bool is_rgb(const rt::image& img, int x, int y, float r, float g, float b) {
+    const size_t i = 3 * (size_t(y) * size_t(img.width()) + size_t(x));
+    return img.data()[i] == r && img.data()[i + 1] == g && img.data()[i + 2] == b;
+}
+} // namespace
+
+TEST_CASE("whitted: a stop between pixels leaves the pixels traced, the others black, and says how many") {
+    // One thread takes tile 0 (x, y < 16) row by row: the flag rises while pixel 39 = (7, 2) is
+    // traced; it is finished, and the render stops before pixel 40.
+    stopped_whitted one = render_stopping(1, 40);
+    CHECK(one.calls == 40);
+    CHECK(one.r.stats.interrupted);
+    CHECK(one.r.stats.samples == 40);
+    CHECK(one.r.stats.pixels_without_samples == 32 * 16 - 40);
+    CHECK(one.r.stats.min_pixel_samples == 0);
+    CHECK(one.r.stats.max_pixel_samples == 1);
+    CHECK(one.r.stats.completed == doctest::Approx(40.0 / 512.0));
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) {
+            CAPTURE(x);
+            CAPTURE(y);
+            const bool traced = x < 16 && y * 16 + x < 40;
+            CHECK(is_rgb(one.r.img, x, y, traced ? 10.0f : 0.0f, traced ? 20.0f : 0.0f, traced ? 30.0f : 0.0f));
+        }
+
+    // Raised before the render: nothing traced, all black.
+    stopped_whitted none = render_stopping(1, 0, true);
+    CHECK(none.calls == 0);
+    CHECK(none.r.stats.interrupted);
+    CHECK(none.r.stats.samples == 0);
+    CHECK(none.r.stats.pixels_without_samples == 512);
+    CHECK(is_rgb(none.r.img, 0, 0, 0, 0, 0));
+
+    // Never raised: the whole image, not interrupted.
+    stopped_whitted all = render_stopping(1, 0);
+    CHECK_FALSE(all.r.stats.interrupted);
+    CHECK(all.r.stats.samples == 512);
+    CHECK(all.r.stats.pixels_without_samples == 0);
+    CHECK(is_rgb(all.r.img, 31, 15, 10, 20, 30));
+}
+
+TEST_CASE("whitted: a stop on two threads: every pixel is traced or black, as the statistics say"
+          * doctest::test_suite("threads")) {
+    // Where the two workers are when the flag rises is up to the scheduler; what must hold is
+    // that each pixel was either traced whole or left black, and that the counts agree.
+    stopped_whitted two = render_stopping(2, 100);
+    CHECK(two.r.stats.interrupted);
+    CHECK(two.r.stats.threads == 2);
+    CHECK(two.r.stats.samples >= 100);
+    CHECK(two.r.stats.samples < 512);
+    CHECK(two.r.stats.samples == two.calls);
+    uint64_t traced = 0, black = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) {
+            if (is_rgb(two.r.img, x, y, 10, 20, 30)) ++traced;
+            else if (is_rgb(two.r.img, x, y, 0, 0, 0)) ++black;
+        }
+    CHECK(traced == two.r.stats.samples);
+    CHECK(black == two.r.stats.pixels_without_samples);
+    CHECK(traced + black == 512);
+}
+
+} // namespace test_whitted

@@ -20,6 +20,8 @@
 
 #include <unistd.h>
 
+namespace test_xml_scene {
+
 using namespace rt;
 
 namespace {
@@ -610,3 +612,5 @@ TEST_CASE("xml scene: bad faces and PLY files") {
                              .c_str(),
                          scene_error);
 }
+
+} // namespace test_xml_scene

@@ -17,10 +17,14 @@
 // Uniform sampling runs in passes, 1 sample per pixel, then 1 more, 2, 4, ... (the count doubling)
 // so that a stopped render has spread its samples over the whole image: after the first pass
 // every pixel has at least one, and the counts differ at most by the interrupted pass (a pixel
-// has either n or 2n samples). Each pixel's sum is kept in double across passes and grows in
-// sample order, so an uninterrupted render gives exactly the image of a single pass of spp samples.
+// has either n or 2n samples). Each pixel's sum is kept in 64-bit fixed point (fixed_point.h), which
+// no order of additions changes, so an uninterrupted render gives exactly the image of a single
+// pass, and renders of parts of the sample range (settings.first_sample, end_sample) or of the
+// image (settings.share) add up to exactly the sums of the whole (settings.keep_sums hands them
+// out: render_result::sums).
 
 #include "../measure/adaptive.h"
+#include "fixed_point.h"
 #include "image.h"
 #include "render_settings.h"
 #include "rng.h"
@@ -55,11 +59,14 @@ namespace rt {
 struct render_stats {
     int width = 0, height = 0;
     int samples_per_pixel = 0;
-    int threads = 0;
+    int threads = 0;                // over all processes of a shared render
+    int ranks = 1;                  // processes that shared the render (engine/mpi_render.h)
     uint64_t rays = 0;              // every ray traced: camera rays and scattered rays
     uint64_t samples = 0;           // camera samples taken
     uint64_t samples_saved = 0;     // by adaptive sampling: width * height * spp - samples
     uint64_t nonfinite_samples = 0; // samples that came out NaN or infinite (dropped)
+    uint64_t saturated_samples = 0; // samples beyond the fixed-point range, clamped (fixed_point.h)
+    int first_sample = 0, end_sample = 0; // the sample range of every pixel rendered
     double seconds = 0;             // wall time of the render, compile included
     // Stopped early by render_settings::stop: each pixel holds the mean of the samples it took.
     bool interrupted = false;
@@ -79,6 +86,7 @@ struct render_stats {
 struct render_result {
     image img;
     render_stats stats;
+    pixel_sums sums; // the exact sums behind img, with settings.keep_sums (uniform sampling); else empty
 };
 
 // Runs sample(x, y, s, rng, rays) -> vec3f for every sample of every pixel of a width x height
@@ -135,7 +143,14 @@ inline bool stderr_is_terminal() {
 
 // What the workers of a render counted.
 struct sample_totals {
-    uint64_t rays = 0, samples = 0, nonfinite = 0;
+    uint64_t rays = 0, samples = 0, nonfinite = 0, saturated = 0;
+
+    void add(const sample_totals& t) {
+        rays += t.rays;
+        samples += t.samples;
+        nonfinite += t.nonfinite;
+        saturated += t.saturated;
+    }
 };
 
 // Runs job(i, totals) for i in [0, count) on `threads` threads (the caller's among them), the
@@ -143,7 +158,7 @@ struct sample_totals {
 template <class Job>
 sample_totals run_jobs(int threads, int count, Job&& job) {
     std::atomic<int> next{0};
-    std::atomic<uint64_t> rays{0}, samples{0}, nonfinite{0};
+    std::atomic<uint64_t> rays{0}, samples{0}, nonfinite{0}, saturated{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     std::atomic<bool> failed{false};
@@ -160,13 +175,14 @@ sample_totals run_jobs(int threads, int count, Job&& job) {
         rays += mine.rays;
         samples += mine.samples;
         nonfinite += mine.nonfinite;
+        saturated += mine.saturated;
     };
     std::vector<std::thread> pool;
     for (int i = 1; i < std::min(threads, count); ++i) pool.emplace_back(worker);
     worker();
     for (auto& th : pool) th.join();
     if (failure) std::rethrow_exception(failure);
-    return {rays.load(), samples.load(), nonfinite.load()};
+    return {rays.load(), samples.load(), nonfinite.load(), saturated.load()};
 }
 
 // Sample s of pixel (x, y), from its own generator; a NaN or infinite sample is dropped and
@@ -260,20 +276,24 @@ inline int render_threads(const render_settings& settings, int jobs) {
     return std::max(1, std::min(threads, jobs));
 }
 
-// The statistics; `counts(i)` is the number of samples pixel i took.
+// The statistics; `counts(i)` is the number of samples pixel i took, `planned` the number the
+// render set out to take. The statistics line goes to stderr unless settings.quiet, or the render
+// is shared (the share's owner reports the whole render, not this process's part).
 template <class Counts>
 render_stats make_stats(int width, int height, const render_settings& settings, int threads, const sample_totals& t,
-                        std::chrono::steady_clock::time_point start, Counts&& counts) {
+                        uint64_t planned, std::chrono::steady_clock::time_point start, Counts&& counts) {
     render_stats st;
     st.width = width;
     st.height = height;
     st.samples_per_pixel = settings.samples_per_pixel;
+    st.first_sample = settings.first_sample;
+    st.end_sample = settings.sample_end();
     st.threads = threads;
     st.rays = t.rays;
     st.samples = t.samples;
     st.nonfinite_samples = t.nonfinite;
+    st.saturated_samples = t.saturated;
     const size_t pixels = size_t(width) * size_t(height);
-    const uint64_t planned = uint64_t(pixels) * uint64_t(settings.samples_per_pixel);
     st.min_pixel_samples = pixels > 0 ? settings.samples_per_pixel : 0;
     for (size_t i = 0; i < pixels; ++i) {
         const int n = counts(i);
@@ -283,10 +303,10 @@ render_stats make_stats(int width, int height, const render_settings& settings, 
     }
     st.interrupted = stop_requested(settings) && (settings.adaptive_error > 0 || t.samples < planned);
     // Samples not taken are saved by adaptive sampling; an interrupted render did not save them.
-    st.samples_saved = st.interrupted ? 0 : planned - t.samples;
-    st.completed = st.interrupted ? double(t.samples) / double(planned) : 1.0;
+    st.samples_saved = st.interrupted || t.samples > planned ? 0 : planned - t.samples;
+    st.completed = st.interrupted && planned > 0 ? double(t.samples) / double(planned) : 1.0;
     st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!settings.quiet) std::fprintf(stderr, "%s\n", stats_line(st).c_str());
+    if (!settings.quiet && settings.share == nullptr) std::fprintf(stderr, "%s\n", stats_line(st).c_str());
     return st;
 }
 
@@ -305,95 +325,143 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
     plan_settings.min_samples = settings.adaptive_min_samples;
     plan_settings.max_samples = settings.samples_per_pixel;
     plan_settings.threads = threads;
+    if (settings.share) {
+        plan_settings.rank = settings.share->rank;
+        plan_settings.ranks = settings.share->ranks;
+    }
     adaptive_sampler plan(plan_settings);
 
     progress_meter progress(settings.quiet, start);
     sample_totals totals;
+    if (settings.share) settings.share->ready();
     for (int round = 0; !stop_requested(settings) && plan.plan_round(); ++round) {
         progress.start_round(round);
         std::atomic<int> jobs_done{0};
         const int jobs = int(plan.job_count());
-        sample_totals t = run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
-            for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
-                if (stop_requested(settings)) return;
-                int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
-                for (int s = item.first; s < item.first + item.count; ++s) {
-                    uint64_t rays_before = mine.rays;
-                    vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
-                    plan.add(item.pixel, c, mine.rays - rays_before);
+        auto take_round = [&] {
+            return run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
+                for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
+                    if (stop_requested(settings)) return;
+                    int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
+                    for (int s = item.first; s < item.first + item.count; ++s) {
+                        uint64_t rays_before = mine.rays;
+                        vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
+                        plan.add(item.pixel, c, mine.rays - rays_before);
+                    }
+                }
+                progress.show(++jobs_done, jobs);
+            });
+        };
+        sample_totals t;
+        std::exception_ptr failure; // shared renders: agreed on below, on every process
+        if (!settings.share) {
+            t = take_round();
+        } else {
+            try {
+                t = take_round();
+            } catch (...) {
+                failure = std::current_exception();
+            }
+        }
+        totals.add(t);
+        if (settings.share) {
+            // Every pixel's new state from the process that sampled it (see render_share); the
+            // words are made before the agreement, so that nothing can fail between it and the
+            // combination.
+            std::vector<uint64_t> words;
+            if (!failure) {
+                try {
+                    words = plan.pack_round();
+                } catch (...) {
+                    failure = std::current_exception();
                 }
             }
-            progress.show(++jobs_done, jobs);
-        });
-        totals.rays += t.rays;
-        totals.samples += t.samples;
-        totals.nonfinite += t.nonfinite;
+            settings.share->round_done(failure);
+            settings.share->combine_owned(words.data(), words.size());
+            plan.unpack_round(words);
+        }
     }
     progress.finish();
 
     render_result result;
     result.img = image(w, h);
     plan.write(result.img.data());
-    result.stats = make_stats(w, h, settings, threads, totals, start, [&](size_t i) { return plan.samples(i); });
+    const uint64_t planned = uint64_t(w) * uint64_t(h) * uint64_t(settings.samples_per_pixel);
+    result.stats =
+        make_stats(w, h, settings, threads, totals, planned, start, [&](size_t i) { return plan.samples(i); });
     return result;
 }
 
-// Uniform sampling: samples_per_pixel samples in every pixel, in passes over the image (1, 1, 2,
-// 4, ... samples: see the top), each pass cut into 16x16 tiles handed to the workers. The passes
-// wait for each other (a pixel's samples must be summed in order); a pass costs as much as all
-// before it, so the waits at their ends add up to about twice the last pass's.
+// Uniform sampling: the samples [first_sample, end_sample) of every pixel (all samples_per_pixel
+// of them by default), in passes over the image (1, 1, 2, 4, ... samples: see the top), each pass
+// cut into 16x16 tiles handed to the workers. A shared render by tiles takes only its own tiles.
+// The passes wait for each other (a pass must not start on a pixel whose previous pass is still
+// running, as both would write its sums); a pass costs as much as all before it, so the waits at
+// their ends add up to about twice the last pass's.
 template <class SampleFn>
 render_result run_tiles(int w, int h, const render_settings& settings, SampleFn& sample,
                         std::chrono::steady_clock::time_point start) {
     constexpr int tile = 16;
     const int spp = settings.samples_per_pixel;
+    const int first_sample = settings.first_sample, end_sample = settings.sample_end();
     const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile, tile_count = tiles_x * tiles_y;
-    const int threads = render_threads(settings, tile_count);
-    const size_t pixel_count = size_t(w) * size_t(h);
+    // This render's tiles: all, or every ranks-th from its rank on (round robin spreads the costly
+    // parts of an image over the processes better than bands would).
+    const bool by_tiles = settings.share != nullptr && settings.share->by_tiles && settings.share->ranks > 1;
+    const int tile_step = by_tiles ? settings.share->ranks : 1, tile_first = by_tiles ? settings.share->rank : 0;
+    const int my_tiles = tile_first < tile_count ? (tile_count - tile_first + tile_step - 1) / tile_step : 0;
+    const int threads = render_threads(settings, std::max(1, my_tiles));
+    // Every sample is clamped so that spp of them cannot overflow a sum (fixed_point.h).
+    const int64_t limit = sample_limit(spp);
 
-    // Each pixel's running sums (double, as a single pass summed them) and sample count.
-    std::vector<double> sums(pixel_count * 3, 0.0);
-    std::vector<int> counts(pixel_count, 0);
+    pixel_sums sums(w, h);
     progress_meter progress(settings.quiet, start);
-    const int64_t total = int64_t(pixel_count) * spp;
+    uint64_t my_pixels = 0;
+    for (int j = tile_first; j < tile_count; j += tile_step) {
+        const int x0 = (j % tiles_x) * tile, y0 = (j / tiles_x) * tile;
+        my_pixels += uint64_t(std::min(x0 + tile, w) - x0) * uint64_t(std::min(y0 + tile, h) - y0);
+    }
+    const int64_t total = int64_t(my_pixels) * (end_sample - first_sample);
     std::atomic<int64_t> done{0};
     sample_totals totals;
-    for (int first = 0; first < spp && !stop_requested(settings);) {
-        const int last = std::min(spp, std::max(1, 2 * first)); // this pass: samples [first, last)
-        sample_totals t = run_jobs(threads, tile_count, [&](int j, sample_totals& mine) {
+    if (settings.share) settings.share->ready();
+    for (int first = first_sample; first < end_sample && !stop_requested(settings);) {
+        // This pass: samples [first, last), 1 sample, then 1, 2, 4 ... counted from the range's start.
+        const int last = std::min(end_sample, first_sample + std::max(1, 2 * (first - first_sample)));
+        sample_totals t = run_jobs(threads, my_tiles, [&](int job, sample_totals& mine) {
+            const int j = tile_first + job * tile_step;
             int x0 = (j % tiles_x) * tile, y0 = (j / tiles_x) * tile;
             int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
             for (int y = y0; y < y1; ++y) {
                 for (int x = x0; x < x1; ++x) {
                     if (stop_requested(settings)) return;
                     const size_t i = size_t(y) * size_t(w) + size_t(x);
-                    double sum[3] = {sums[i * 3], sums[i * 3 + 1], sums[i * 3 + 2]};
+                    int64_t sum[3] = {sums.rgb[i * 3], sums.rgb[i * 3 + 1], sums.rgb[i * 3 + 2]};
                     for (int s = first; s < last; ++s) {
                         vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
-                        sum[0] += c.x;
-                        sum[1] += c.y;
-                        sum[2] += c.z;
+                        bool clamped = false;
+                        // No overflow: at most spp samples of at most `limit` each (fixed_point.h).
+                        sum[0] += to_fixed(c.x, limit, clamped);
+                        sum[1] += to_fixed(c.y, limit, clamped);
+                        sum[2] += to_fixed(c.z, limit, clamped);
+                        if (clamped) ++mine.saturated;
                     }
-                    for (int k = 0; k < 3; ++k) sums[i * 3 + size_t(k)] = sum[k];
-                    counts[i] = last;
+                    for (int k = 0; k < 3; ++k) sums.rgb[i * 3 + size_t(k)] = sum[k];
+                    sums.counts[i] = last - first_sample;
                 }
             }
             progress.show(done += int64_t(x1 - x0) * (y1 - y0) * (last - first), total);
         });
-        totals.rays += t.rays;
-        totals.samples += t.samples;
-        totals.nonfinite += t.nonfinite;
+        totals.add(t);
         first = last;
     }
     progress.finish();
 
     render_result result;
-    result.img = image(w, h);
-    std::vector<float>& pixels = result.img.data();
-    for (size_t i = 0; i < pixel_count; ++i)
-        for (size_t k = 0; k < 3; ++k)
-            pixels[i * 3 + k] = counts[i] > 0 ? static_cast<float>(sums[i * 3 + k] / counts[i]) : 0.0f;
-    result.stats = make_stats(w, h, settings, threads, totals, start, [&](size_t i) { return counts[i]; });
+    result.img = mean_image(sums);
+    const uint64_t planned = my_pixels * uint64_t(end_sample - first_sample);
+    result.stats = make_stats(w, h, settings, threads, totals, planned, start, [&](size_t i) { return sums.counts[i]; });
+    if (settings.keep_sums) result.sums = std::move(sums);
     return result;
 }
 
@@ -402,6 +470,7 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
 template <class SampleFn>
 render_result render_samples(int width, int height, const render_settings& settings, SampleFn&& sample,
                              std::chrono::steady_clock::time_point start) {
+    settings.check();
     if (settings.adaptive_error > 0) return detail::run_adaptive(width, height, settings, sample, start);
     return detail::run_tiles(width, height, settings, sample, start);
 }
@@ -409,11 +478,23 @@ render_result render_samples(int width, int height, const render_settings& setti
 inline std::string stats_line(const render_stats& s) {
     char line[256];
     std::snprintf(line, sizeof line,
-                  "rtweekend: %dx%d, %d spp: %llu rays in %.3f s = %.2f Mrays/s (%d thread%s), %llu NaN/Inf samples",
+                  "rtweekend: %dx%d, %d spp: %llu rays in %.3f s = %.2f Mrays/s (%d thread%s%s), %llu NaN/Inf samples",
                   s.width, s.height, s.samples_per_pixel, static_cast<unsigned long long>(s.rays), s.seconds,
                   s.mrays_per_second(), s.threads, s.threads == 1 ? "" : "s",
+                  s.ranks > 1 ? (" on " + std::to_string(s.ranks) + " ranks").c_str() : "",
                   static_cast<unsigned long long>(s.nonfinite_samples));
     std::string text = line;
+    // Only when there are any: a clamp is a sign of a broken scene (fixed_point.h gives the limit).
+    if (s.saturated_samples > 0) {
+        std::snprintf(line, sizeof line, ", %llu samples beyond the fixed-point range (clamped)",
+                      static_cast<unsigned long long>(s.saturated_samples));
+        text += line;
+    }
+    // A part of the sample range (a slice, an MPI rank's share): which part.
+    if (s.end_sample > 0 && (s.first_sample != 0 || s.end_sample != s.samples_per_pixel)) {
+        std::snprintf(line, sizeof line, ", samples %d to %d", s.first_sample, s.end_sample - 1);
+        text += line;
+    }
     if (s.interrupted) {
         std::snprintf(line, sizeof line, ", interrupted: %.1f samples per pixel on average (%d to %d)",
                       s.mean_pixel_samples(), s.min_pixel_samples, s.max_pixel_samples);

@@ -22,7 +22,10 @@
 //     composited; 16-bit PNGs are reduced to 8 bits by stb_image.
 //   - Netpbm allows several images in one file: a P6 file is read up to the end of its first
 //     raster. A P3 file must end after its raster, because extra values there almost always mean
-//     a header whose size is wrong. A PFM file must be exactly its header and raster.
+//     a header whose size is wrong. A PFM file must be exactly its header and raster, or be
+//     followed by a sample slice's trailer (io/slice_file.h: `render --samples` writes a PFM of the
+//     slice's mean, then the exact sums for `merge`), which starts with slice_trailer_magic and is
+//     not read here: any other bytes after the raster are refused as before.
 //
 // This header, not image.h, holds the readers. stb_image comes through rtw_stb_image.h (which
 // texture.h includes too): a program that brings its own stb_image must define
@@ -46,6 +49,9 @@
 #include <vector>
 
 namespace rt {
+
+// What a sample slice's trailer starts with, right after the PFM raster (io/slice_file.h).
+inline constexpr char slice_trailer_magic[] = "\nrtweekend-slice ";
 
 struct loaded_image {
     image pixels;                  // linear radiance, or codes on the 8-bit scale 0..255
@@ -206,7 +212,16 @@ inline loaded_image decode_ppm(const std::string& bytes, const std::string& name
     return out;
 }
 
-inline loaded_image decode_pfm(const std::string& bytes, const std::string& name) {
+// A PFM file's header, checked, and where its raster lies.
+struct pfm_layout {
+    uint64_t width = 0, height = 0, channels = 3;
+    bool little_endian = true;
+    size_t raster = 0, raster_end = 0; // byte offsets: the raster is [raster, raster_end)
+};
+
+// Reads and checks a PFM header, and that the file holds the raster it describes. Bytes after the
+// raster are allowed only when they are a slice trailer (slice_trailer_magic).
+inline pfm_layout read_pfm_layout(const std::string& bytes, const std::string& name) {
     const bool colour = bytes[1] == 'F';
     header_cursor c{bytes, name, "PFM", false};
     c.pos = 2;
@@ -240,13 +255,21 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
     if (available < needed)
         c.fail("raster is truncated: " + size_text(w, h) + " needs " + std::to_string(needed) + " bytes, the file has " +
                std::to_string(available));
-    if (available > needed)
+    const size_t end = c.pos + size_t(needed);
+    const size_t magic_size = sizeof slice_trailer_magic - 1;
+    if (available > needed && bytes.compare(end, magic_size, slice_trailer_magic) != 0)
         c.fail("has " + std::to_string(available - needed) + " bytes after the raster of a " + size_text(w, h) + " image");
     check_size(w, h, name, c.format);
+    return {w, h, channels, scale < 0, c.pos, end};
+}
 
-    const bool little_endian = scale < 0;
+inline loaded_image decode_pfm(const std::string& bytes, const std::string& name) {
+    const pfm_layout layout = read_pfm_layout(bytes, name);
+    const uint64_t w = layout.width, h = layout.height, channels = layout.channels;
+    const bool colour = channels == 3;
+    const bool little_endian = layout.little_endian;
     loaded_image out{image(int(w), int(h)), false, "PFM"};
-    const auto* src = reinterpret_cast<const unsigned char*>(bytes.data() + c.pos);
+    const auto* src = reinterpret_cast<const unsigned char*>(bytes.data() + layout.raster);
     float* dst = out.pixels.data().data();
     for (uint64_t file_row = 0; file_row < h; ++file_row) {
         // PFM stores rows bottom to top; the image's row 0 is the top.

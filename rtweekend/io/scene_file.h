@@ -93,9 +93,15 @@ struct scene_description {
     camera cam;
     hittable_list world;
     std::vector<point_light> point_lights; // found by light sampling only (render with rt::render(cam, world, point_lights))
+    // Every file the scene was read from: the scene file (load_scene), then its meshes and image
+    // textures in the order read, as opened. What decides the image besides the settings, so what
+    // a fingerprint of the scene hashes (io/slice_file.h: slices of different scenes do not merge).
+    std::vector<std::string> files;
 };
 
-// Reads a scene from a stream; `name` is the file name used in error messages.
+// Reads a scene from a stream; `name` is the file name used in error messages. Text without a
+// directive (nothing, or only comments and blank lines) is refused: "<name>: scene file is empty
+// (no directives)", as load_scene refuses an empty file.
 scene_description parse_scene(std::istream& in, const std::string& name);
 
 // Throws scene_error unless the image `cam` would render is within max_image_pixels
@@ -103,9 +109,10 @@ scene_description parse_scene(std::istream& in, const std::string& name);
 // 65536 pixels, or an aspect ratio that is not positive, is left to the camera's own check.
 void check_camera_image_size(const camera& cam);
 
-// Reads a scene file. Besides parse_scene's checks, refuses a file that is empty (or only
-// comments) or that places no object in the world: either would render nothing but the sky. And
-// refuses an image larger than max_image_pixels (io/input_limits.h), before anything is allocated.
+// Reads a scene file. Besides parse_scene's checks (an empty file, or one of only comments, is
+// refused there), refuses a file that places no object in the world: it would render nothing but
+// the sky. And refuses an image larger than max_image_pixels (io/input_limits.h), before anything
+// is allocated.
 scene_description load_scene(const std::string& path);
 
 // load_scene on a file's text already in memory: `path` names it in messages, and relative mesh
@@ -449,6 +456,7 @@ inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, 
         } catch (const scene_error& e) {
             line.fail(e.what());
         }
+        scene_.files.push_back(file);
         // `smooth`: shade with the file's vertex normals, or with computed ones if it has none.
         if (at < line.size() && line.word(at) == "smooth") {
             if (mesh->normals.empty() || mesh->face_normals.empty()) mesh->compute_vertex_normals();
@@ -481,7 +489,9 @@ inline void scene_parser::texture_line(const scene_line& line) {
     } else if (kind == "image") {
         line.expect_count(4, "texture name image file");
         try {
-            tex = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
+            auto image = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
+            scene_.files.push_back(image->image().path()); // where it was found ($RTW_IMAGES, images/...)
+            tex = std::move(image);
         } catch (const scene_error& e) {
             line.fail(e.what());
         }
@@ -556,6 +566,7 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
     detail::scene_parser parser(scene, name);
     std::string text;
     int number = 0;
+    bool any_directive = false;
     while (std::getline(in, text)) {
         ++number;
         // A text format holds no NUL bytes; one means a binary or damaged file, and would hide
@@ -568,9 +579,12 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
         std::vector<std::string> tokens;
         for (std::string w; words >> w;) tokens.push_back(w);
         if (tokens.empty()) continue;
+        any_directive = true;
         parser.line(detail::scene_line(name, number, std::move(tokens)));
     }
     if (in.bad()) throw scene_error(name + ": read error");
+    // Nothing to render but the default sky: surely not what was meant (a missing or truncated file).
+    if (!any_directive) throw scene_error(name + ": scene file is empty (no directives)");
     parser.finish();
     return scene;
 }
@@ -588,18 +602,11 @@ inline scene_description load_scene(const std::string& path) { return decode_sce
 inline scene_description decode_scene(const std::string& text, const std::string& path) {
     std::istringstream in(text);
     scene_description scene = parse_scene(in, path);
-    if (scene.world.objects.empty()) {
-        // Only comments and blank lines, or directives that placed nothing in the world.
-        bool has_directive = false;
-        std::istringstream lines(text);
-        for (std::string line, word; !has_directive && std::getline(lines, line);) {
-            line.erase(std::min(line.find('#'), line.size()));
-            has_directive = bool(std::istringstream(line) >> word);
-        }
-        throw scene_error(path + (has_directive ? ": the scene has no objects (a group's shapes count only where "
-                                                  "an instance places them): it would render only the background"
-                                                : ": scene file is empty (no directives)"));
-    }
+    scene.files.insert(scene.files.begin(), path);
+    // Directives that placed nothing in the world (an empty file is parse_scene's error).
+    if (scene.world.objects.empty())
+        throw scene_error(path + ": the scene has no objects (a group's shapes count only where an instance places "
+                                 "them): it would render only the background");
     // The image is allocated at render time; its size is known now.
     try {
         check_camera_image_size(scene.cam);

@@ -167,12 +167,14 @@ class xml_scene_reader {
         if (std::string(root.name()) != "Scene")
             fail(root, "<" + std::string(root.name()) + ">", "the root element must be <Scene>");
         whitted_scene scene;
+        scene.files.push_back(path_);
         read_settings(root, scene);
         read_vertices(root);
         read_materials(root);
         read_cameras(root, scene);
         read_lights(root, scene);
         read_objects(root, scene);
+        scene.files.insert(scene.files.end(), ply_files_.begin(), ply_files_.end());
         if (scene.cameras.empty()) fail(root, "<Scene>", "no camera: a scene needs a <Camera> inside <Cameras>");
         return scene;
     }
@@ -566,6 +568,7 @@ class xml_scene_reader {
             } catch (const scene_error& e) {
                 fail(faces, owner, "<Faces plyFile=\"" + file + "\">: " + e.what());
             }
+            ply_files_.push_back(resolved);
         } else {
             // The course's files put vertexOffset on <Faces>; a <Mesh vertexOffset> means the same.
             if (o.attribute("vertexOffset") && faces.attribute("vertexOffset"))
@@ -624,6 +627,7 @@ class xml_scene_reader {
     std::vector<point3> vertices_;
     std::map<long long, std::shared_ptr<whitted_material>> materials_;
     std::map<long long, size_t> material_lines_;
+    std::vector<std::string> ply_files_; // the PLY meshes read, in order (whitted_scene::files)
 };
 
 } // namespace detail

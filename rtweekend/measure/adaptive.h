@@ -9,6 +9,14 @@
 //               a.add(w.pixel, sample, rays);     // in sample order
 //   a.write(pixels);                              // the mean of each pixel's samples
 //
+// Shared by several processes (MPI ranks; settings.ranks > 1): every process holds the whole
+// state and plans the same round from it; plan_round() then hands each process the jobs of its
+// own part of the round (items cut at equal shares of the round's samples), and after the round
+// pack_round() / unpack_round() carry each pixel's new state from the one process that sampled it
+// to all the others (the words of pixels sampled elsewhere are zero, so they combine exactly, by
+// OR or by sum). Every process then ends the round with exactly the state a lone process would
+// have, and the image is the same.
+//
 // Round 0 takes min_samples samples in every pixel. After each round every pixel gets a target
 // count, and a pixel below it takes more, at most doubling its count in one round.
 //
@@ -48,6 +56,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace rt::detail {
@@ -58,6 +67,7 @@ struct adaptive_settings {
     int min_samples = 16; // camera::adaptive_min_samples: round 0
     int max_samples = 16; // camera::samples_per_pixel
     int threads = 1;      // jobs are cut so that each thread gets several per round
+    int rank = 0, ranks = 1; // this process's part of a round shared by `ranks` processes
 };
 
 class adaptive_sampler {
@@ -69,9 +79,12 @@ class adaptive_sampler {
 
     explicit adaptive_sampler(const adaptive_settings& s) : s_(s), pixels_(size_t(s.width) * size_t(s.height)) {
         s_.min_samples = std::min(std::max(2, s_.min_samples), s_.max_samples);
+        s_.ranks = std::max(1, s_.ranks);
+        s_.rank = std::min(std::max(0, s_.rank), s_.ranks - 1);
     }
 
-    // Plans the next round. False when no pixel needs more samples.
+    // Plans the next round. False when no pixel needs more samples (on every process alike: they
+    // plan from the same state). The jobs are this process's part of the round.
     bool plan_round() {
         items_.clear();
         if (round_ == 0) {
@@ -80,8 +93,46 @@ class adaptive_sampler {
             plan_from_estimates();
         }
         ++round_;
+        take_part();
         cut_jobs();
         return !items_.empty();
+    }
+
+    // Words per pixel in pack_round(): the sums and squares of its three channels (as the bits of
+    // their doubles), its rays and its sample count.
+    static constexpr size_t words_per_pixel = 8;
+
+    // The state of every pixel of the round (in the order of the round's items): the pixels this
+    // process sampled, zeros for the others.
+    std::vector<uint64_t> pack_round() const {
+        std::vector<uint64_t> words(items_.size() * words_per_pixel, 0);
+        for (size_t i = part_begin_; i < part_end_; ++i) {
+            const pixel_stats& p = pixels_[items_[i].pixel];
+            uint64_t* w = &words[i * words_per_pixel];
+            for (int k = 0; k < 3; ++k) {
+                std::memcpy(&w[k], &p.sum[k], sizeof(double));
+                std::memcpy(&w[3 + k], &p.squares[k], sizeof(double));
+            }
+            w[6] = p.rays;
+            w[7] = uint64_t(p.n);
+        }
+        return words;
+    }
+
+    // Takes every pixel's state of the round from `words`: pack_round()'s words of all processes,
+    // combined (each pixel's from the process that sampled it).
+    void unpack_round(const std::vector<uint64_t>& words) {
+        if (words.size() != items_.size() * words_per_pixel) return; // not this round's: nothing to take
+        for (size_t i = 0; i < items_.size(); ++i) {
+            pixel_stats& p = pixels_[items_[i].pixel];
+            const uint64_t* w = &words[i * words_per_pixel];
+            for (int k = 0; k < 3; ++k) {
+                std::memcpy(&p.sum[k], &w[k], sizeof(double));
+                std::memcpy(&p.squares[k], &w[3 + k], sizeof(double));
+            }
+            p.rays = w[6];
+            p.n = int(w[7]);
+        }
     }
 
     size_t job_count() const { return jobs_.empty() ? 0 : jobs_.size() - 1; }
@@ -204,17 +255,49 @@ class adaptive_sampler {
         }
     }
 
-    // Cuts the round's work into jobs of about equal sample counts, many per thread: threads wait
-    // for each other at the end of a round, for half a job on average.
-    void cut_jobs() {
-        jobs_.assign(1, 0);
+    // This process's items of the round: a contiguous run of them, cut where the samples before an
+    // item reach an equal share of the round's samples (the same cut on every process: the items
+    // and the arithmetic are the same). Alone, it takes them all.
+    void take_part() {
+        part_begin_ = 0;
+        part_end_ = items_.size();
+        if (s_.ranks == 1) return;
         uint64_t total = 0;
         for (const work_item& w : items_) total += uint64_t(w.count);
+        // The process an item goes to: floor(samples before it * ranks / total), in double (the
+        // product may exceed 64 bits; the same on every process, and non-decreasing along the items).
+        auto owner = [&](uint64_t before) {
+            return std::min(s_.ranks - 1, int(std::floor(double(before) / double(total) * double(s_.ranks))));
+        };
+        uint64_t before = 0;
+        bool begun = false;
+        part_begin_ = part_end_ = items_.size();
+        for (size_t i = 0; i < items_.size(); ++i) {
+            const int r = owner(before);
+            if (r == s_.rank && !begun) {
+                part_begin_ = i;
+                begun = true;
+            }
+            if (r > s_.rank) {
+                part_end_ = i;
+                break;
+            }
+            before += uint64_t(items_[i].count);
+        }
+        if (!begun) part_begin_ = part_end_;
+    }
+
+    // Cuts this process's work of the round into jobs of about equal sample counts, many per
+    // thread: threads wait for each other at the end of a round, for half a job on average.
+    void cut_jobs() {
+        jobs_.assign(1, part_begin_);
+        uint64_t total = 0;
+        for (size_t i = part_begin_; i < part_end_; ++i) total += uint64_t(items_[i].count);
         uint64_t per_job = std::max<uint64_t>(64, total / (uint64_t(std::max(1, s_.threads)) * 64));
         uint64_t in_job = 0;
-        for (size_t i = 0; i < items_.size(); ++i) {
+        for (size_t i = part_begin_; i < part_end_; ++i) {
             in_job += uint64_t(items_[i].count);
-            if (in_job >= per_job || i + 1 == items_.size()) {
+            if (in_job >= per_job || i + 1 == part_end_) {
                 jobs_.push_back(i + 1);
                 in_job = 0;
             }
@@ -227,6 +310,7 @@ class adaptive_sampler {
     double mean_cost_ = 1;      // mean rays per sample over the image after round 0
     int round_ = 0;
     std::vector<work_item> items_;
+    size_t part_begin_ = 0, part_end_ = 0; // this process's items of the round
     std::vector<size_t> jobs_;
 };
 
