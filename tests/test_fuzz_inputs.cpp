@@ -6,6 +6,8 @@
 // harnesses (tests/fuzz), and the in-memory entry points and the command-line parser those
 // harnesses call.
 
+#include <rtweekend/engine/light_set.h>
+#include <rtweekend/engine/scene_compiler.h>
 #include <rtweekend/engine/whitted.h>
 #include <rtweekend/io/exr.h>
 #include <rtweekend/io/file.h>
@@ -17,6 +19,7 @@
 #include <rtweekend/io/xml_scene.h>
 #include <rtweekend/perlin.h>
 #include <rtweekend/rtw_stb_image.h>
+#include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>
 
@@ -398,6 +401,24 @@ TEST_CASE("fuzz: a JPEG Huffman table of more than 256 codes is refused (stb_ima
                   {"JPEG Huffman table at byte " + std::to_string(dht + 4) + " has " + std::to_string(sum + 510) + " codes"});
 }
 
+TEST_CASE("fuzz: a JPEG scan that uses a Huffman table the file never defines") {
+    // The third component's scan selector names AC table 3; the file defines tables 0 and 1.
+    // stb_image 2.27 decodes with the undefined table's uninitialised memory and indexes past its
+    // arrays (before: render exit 0 with a garbage texture; UBSan: index -1344943079 out of bounds).
+    check_refused([] { rtw_image img((fuzz_dir + "jpeg_undefined_huffman_table.jpg").c_str()); },
+                  {"jpeg_undefined_huffman_table.jpg", "JPEG scan at byte 593 uses Huffman table AC 3, which the file does not define"});
+    // A file stb_image_write made decodes; its scan pointed at DC table 2 instead is refused.
+    std::string jpeg;
+    std::vector<unsigned char> pixels(8 * 8 * 3, 100);
+    REQUIRE(stbi_write_jpg_to_func(rt::detail::append_bytes, &jpeg, 8, 8, 3, pixels.data(), 90) != 0);
+    CHECK_NOTHROW(rtw_image().decode(jpeg, "ok.jpg"));
+    const size_t sos = jpeg.find("\xff\xda");
+    REQUIRE(sos != std::string::npos);
+    jpeg[sos + 6] = char(0x20); // the first component's selectors: DC 2, AC 0
+    check_refused([&] { rtw_image().decode(jpeg, "dc2.jpg"); },
+                  {"JPEG scan at byte " + std::to_string(sos) + " uses Huffman table DC 2"});
+}
+
 TEST_CASE("fuzz: a truncated run-length HDR texture is refused (stb_image 2.27 looped for ever)") {
     // The first scanline's header (2 2, width 8), then the file ends: stb_image reads zeros past
     // the end, and a count of 0 never advances. The header is 45 bytes, the scanline's 4 more.
@@ -557,6 +578,56 @@ TEST_CASE("fuzz: an XML ImageName with a line break is refused") {
                   {"xml_image_name_line_break.xml:14: <Camera id=\"1\">: <ImageName> 'facing\\x0amirrors.png' has a control character"});
     CHECK_FALSE(image_name_problem("a\tb.png").empty());
     CHECK(image_name_problem("caf\xc3\xa9.png").empty()); // UTF-8 is not a control character
+}
+
+TEST_CASE("fuzz: a shadow ray offset by ShadowRayEpsilon 1e23 (the BVH entered a node's empty slots)") {
+    // The offset origin is 5.8e22 in every coordinate, so the direction to the light rounds to
+    // (-0, -0, -0) and origin / direction overflows: the slab test found +inf <= +inf for the
+    // empty slots of a node and followed them (render: segmentation fault). The scene renders.
+    whitted_scene scene = load_xml_scene(fuzz_dir + "shadow_epsilon_huge.xml");
+    REQUIRE(scene.shadow_ray_epsilon == 1e23);
+    const whitted_render r = render_one_thread(scene);
+    CHECK(std::isfinite(r.img.data()[0]));
+
+    // The same rays straight at the engine: 21 spheres (more than a leaf), such rays hit nothing,
+    // nor do rays with a NaN component; an ordinary ray still hits.
+    hittable_list world;
+    auto grey = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
+    for (int i = 0; i < 21; ++i) world.add(std::make_shared<sphere>(point3(i - 10, 0, -5), 0.4, grey));
+    const compiled_scene compiled = compile_scene(world, point3(0, 0, 0));
+    REQUIRE(compiled.bvh.nodes.size() > 0);
+    const float far_out = 5.8e22f, inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    surface_hit hit;
+    for (const ray3f& bad : {ray3f{{far_out, far_out, far_out}, {-0.0f, -0.0f, -0.0f}, 0, inf, 0},
+                             ray3f{{0, 0, 0}, {nan, 0, -1}, 0, inf, 0}, ray3f{{nan, 0, 0}, {0, 0, -1}, 0, inf, 0}}) {
+        CHECK_FALSE(compiled.occluded(bad));
+        CHECK_FALSE(compiled.intersect(bad, hit));
+    }
+    const ray3f good{{0, 0, 0}, {0, 0, -1}, 0, inf, 0};
+    CHECK(compiled.occluded(good));
+    REQUIRE(compiled.intersect(good, hit));
+    CHECK(hit.t == doctest::Approx(4.6).epsilon(1e-5));
+}
+
+TEST_CASE("fuzz: a light whose power overflows a float (the light table threw an internal exception)") {
+    // Radiance 3e38 over a 2x2 quad: 3e38 x 4 x pi is beyond float's range; the alias table
+    // refused the infinite weight with std::invalid_argument ("render: error: alias_table: weights
+    // must be finite and non-negative"). The power is now taken in double there, and it renders.
+    scene_description scene = load_scene(fuzz_dir + "scene_light_power_overflow.txt");
+    scene.cam.quiet = true;
+    scene.cam.threads = 1;
+    render_result r;
+    CHECK_NOTHROW(r = render(scene.cam, scene.world));
+    CHECK(r.img.width() == 8);
+    // A power a float holds is the float product, as before (the same light choices, the same images).
+    light l;
+    l.kind = light_kind::quad;
+    l.p1 = {2, 0, 0};
+    l.p2 = {0, 2, 0};
+    l.emission = {3, 3, 3};
+    CHECK(l.power() == double(3.0f * 4.0f * pi_f));
+    l.emission = {3e38f, 3e38f, 3e38f};
+    CHECK(l.power() == doctest::Approx(3e38 * 4 * 3.14159265358979323846).epsilon(1e-6));
 }
 
 TEST_CASE("fuzz: render writes an XML scene's images in the current directory when -o is not given") {

@@ -443,6 +443,12 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
     if (bvh_ref::is_leaf(bvh.root)) return leaf_test(bvh.root, tmax);
 
     const detail::bvh_ray ray(r);
+    // A ray whose slab distances are not finite (a NaN component, or an origin so far out that
+    // origin / direction overflows, as a shadow ray offset by 1e23 had) hits nothing: the slab test
+    // would otherwise find +inf <= +inf in the empty slots of a node and follow them (an XML scene
+    // with ShadowRayEpsilon 1e20 crashed render).
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(ray.inv[a]) || !std::isfinite(ray.origin_inv[a])) return false;
     struct entry {
         uint32_t ref;
         float tnear;

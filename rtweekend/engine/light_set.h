@@ -46,8 +46,10 @@ struct light {
 
     bool is_delta() const { return kind == light_kind::point; }
     float area() const;
-    // The power the light emits, averaged over channels (up to a common factor).
-    float power() const;
+    // The power the light emits, averaged over channels (up to a common factor); in double where
+    // float overflows (a radiance of 1e37 over a few square units), so that every finite light
+    // has a finite weight.
+    double power() const;
 };
 
 // One light sample, as seen from the shading point p.
@@ -142,10 +144,29 @@ inline float light::area() const {
     return 0;
 }
 
-inline float light::power() const {
+inline double light::power() const {
     const float mean = (emission.x + emission.y + emission.z) * (1.0f / 3.0f);
-    if (kind == light_kind::point) return 4.0f * pi_f * mean;
-    return mean * area() * pi_f * (two_sided ? 2.0f : 1.0f);
+    const float p = kind == light_kind::point ? 4.0f * pi_f * mean : mean * area() * pi_f * (two_sided ? 2.0f : 1.0f);
+    if (std::isfinite(p)) return p; // float, as always: the same weights, the same images
+    // Beyond float's range: the same product in double (a NaN stays NaN, and is refused).
+    const double pi_d = 3.14159265358979323846;
+    const double mean_d = (double(emission.x) + double(emission.y) + double(emission.z)) / 3.0;
+    // |a x b| in double, of float vectors.
+    auto cross_length = [](double ax, double ay, double az, double bx, double by, double bz) {
+        const double x = ay * bz - az * by, y = az * bx - ax * bz, z = ax * by - ay * bx;
+        return std::sqrt(x * x + y * y + z * z);
+    };
+    double area_d = 0;
+    switch (kind) {
+    case light_kind::sphere: area_d = 4.0 * pi_d * double(radius) * double(radius); break;
+    case light_kind::quad: area_d = cross_length(p1.x, p1.y, p1.z, p2.x, p2.y, p2.z); break;
+    case light_kind::triangle:
+        area_d = 0.5 * cross_length(double(p1.x) - p0.x, double(p1.y) - p0.y, double(p1.z) - p0.z, double(p2.x) - p0.x,
+                                    double(p2.y) - p0.y, double(p2.z) - p0.z);
+        break;
+    case light_kind::point: return 4.0 * pi_d * mean_d;
+    }
+    return mean_d * area_d * pi_d * (two_sided ? 2.0 : 1.0);
 }
 
 inline void light_set::build(table& t, bool (*member)(const light&)) {

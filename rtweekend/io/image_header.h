@@ -23,10 +23,12 @@
 //     checking, which overflows on a long run of digits), and 16 bits a sample (a maxval above
 //     255): stb_image 2.27 expands 16-bit grey to RGB with its 8-bit routine, reading past its
 //     buffer, and reads 16-bit samples little-endian where the format stores them big-endian;
-//   - JPEG (read by stb_image for textures): a Huffman table (DHT segment) of more than 256 codes.
-//     stb_image 2.27 (Debian 12's) writes such a table's code lengths past the end of its
-//     257-entry array; the segments are walked as stb_image walks them (entropy-coded data is
-//     skipped to the next marker), so every table it would build is checked first.
+//   - JPEG (read by stb_image for textures): a Huffman table (DHT segment) of more than 256 codes,
+//     and a scan that uses a Huffman table the file has not defined. stb_image 2.27 (Debian 12's)
+//     writes the code lengths of the first past the end of its 257-entry array, and decodes with
+//     the second as it finds it in uninitialised memory; the segments are walked as stb_image
+//     walks them (entropy-coded data is skipped to the next marker), so every table it would build
+//     or use is checked first.
 // Other formats (JPEG, TGA, HDR, PNM textures) are left to stb_image, whose stbi_info reads their
 // size; the caller checks that size (rtw_stb_image.h) against the limits and against
 //
@@ -225,6 +227,8 @@ inline std::string jpeg_header_problem(const std::string& b) {
     auto at = [&](size_t i) { return static_cast<unsigned char>(b[i]); };
     const size_t size = b.size();
     size_t pos = jpeg_after_soi(b);
+    bool defined[2][4] = {}; // Huffman tables defined so far: [DC, AC][id]
+    bool progressive = false;
     while (pos < size) {
         // A marker: 0xff (fill bytes 0xff may repeat), then its code; stb_image skips other bytes
         // between segments.
@@ -251,9 +255,34 @@ inline std::string jpeg_header_problem(const std::string& b) {
                 if (codes > 256)
                     return "JPEG Huffman table at byte " + std::to_string(table) + " has " + std::to_string(codes) +
                            " codes, more than 256 (the file is damaged)";
+                defined[at(table) >> 4][at(table) & 15] = true;
                 left -= ptrdiff_t(17 + codes);
                 table += 17 + codes;
                 if (table > size) break;
+            }
+        }
+        if (marker >= 0xc0 && marker <= 0xc2) progressive = marker == 0xc2; // the frames stb_image reads
+        if (marker == 0xda && size - pos >= 3) {
+            // A scan's components name the Huffman tables its data is decoded with; stb_image 2.27
+            // uses a table the file never defined as it finds it in uninitialised memory (and
+            // indexes past its arrays). Which tables a scan uses, as stb_image decodes it: both
+            // in a sequential frame; in a progressive one, DC in a first DC scan (spectral start
+            // 0, Ah 0), none in a DC refinement, AC in an AC scan.
+            const size_t count = at(pos + 2), params = pos + 3 + 2 * count;
+            if (params + 3 <= size && params <= pos + length) {
+                const unsigned spectral_start = at(params), ah = at(params + 2) >> 4;
+                const bool dc = !progressive || (spectral_start == 0 && ah == 0), ac = !progressive || spectral_start > 0;
+                for (size_t c = 0; c < count; ++c) {
+                    const unsigned dc_id = at(pos + 4 + 2 * c) >> 4, ac_id = at(pos + 4 + 2 * c) & 15;
+                    if (dc_id > 3 || ac_id > 3) break; // stb_image refuses the scan
+                    for (int k = 0; k < 2; ++k) {
+                        const unsigned id = k == 0 ? dc_id : ac_id;
+                        if ((k == 0 ? dc : ac) && !defined[k][id])
+                            return "JPEG scan at byte " + std::to_string(pos - 2) + " uses Huffman table " +
+                                   (k == 0 ? "DC " : "AC ") + std::to_string(id) +
+                                   ", which the file does not define before it (the file is damaged)";
+                    }
+                }
             }
         }
         if (length < 2) break;

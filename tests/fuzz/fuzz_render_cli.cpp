@@ -8,7 +8,8 @@
 // load the scene with the flags applied, then render and write -o FILE (or -o DIR for an XML
 // scene); in between, the image is made tiny (tiny_render.h: at most 8x8 pixels, 2 samples, depth
 // 4; XML cameras 4x4, 3 bounces; one thread, quiet). A refused scene must give one clear error
-// line. Without -o, a text scene's image goes to stdout.ppm rather than stdout.
+// line. Without -o, a text scene's image goes to stdout.ppm rather than stdout. A --samples A:B
+// slice that fits the scene's samples per pixel is cut to one sample that fits the tiny render.
 //
 // Containment: the harness runs inside this process's scratch directory, emptied before each
 // input, and every word loses its '/' and '\' characters (a word of dots only becomes "_"), so
@@ -27,6 +28,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -86,6 +88,12 @@ void run(const std::string& command_line, const std::string& scene_text) {
         } else {
             if (opt.output.empty()) opt.output = "stdout.ppm";
             rt::scene_description scene = app::read_text_scene(opt);
+            // --samples A:B within the scene's samples per pixel stays within them once they are
+            // cut to 2: one sample, from A = 0 or 1 (beyond them, render refuses it as it would).
+            if (opt.samples && opt.samples->second <= scene.cam.samples_per_pixel) {
+                const int first = std::min(opt.samples->first, 1);
+                opt.samples = std::make_pair(first, first + 1);
+            }
             fuzz::shrink(scene.cam);
             app::render_text_scene(opt, scene);
         }
