@@ -418,6 +418,59 @@ TEST_CASE("fuzz: a JPEG scan that uses a Huffman table the file never defines") 
                   {"JPEG scan at byte " + std::to_string(sos) + " uses Huffman table DC 2"});
 }
 
+namespace {
+
+// A 16x16 grey progressive JPEG of `scans` scans: quantisation table 0 of ones, one Huffman table
+// of each class holding one 1-bit code (symbol 0), a first DC scan, then AC refinement scans
+// (spectral 1..63, Ah 1, Al 0); each scan's data is three zero bytes: DC differences of 0, and
+// end-of-band runs. Every coefficient stays 0, so every pixel is the level shift, 128.
+std::string progressive_grey_jpeg(int scans) {
+    auto segment = [](unsigned marker, const std::string& payload) {
+        const size_t length = payload.size() + 2;
+        return std::string{'\xff', char(marker), char(length >> 8), char(length & 0xff)} + payload;
+    };
+    const std::string one_code = std::string(1, '\x01') + std::string(15, '\0') + std::string(1, '\0');
+    std::string j = std::string("\xff\xd8", 2);
+    j += segment(0xdb, std::string(1, '\0') + std::string(64, '\x01'));
+    j += segment(0xc2, std::string("\x08\x00\x10\x00\x10\x01\x01\x11\x00", 9)); // 8 bits, 16x16, 1 component
+    j += segment(0xc4, std::string(1, '\x00') + one_code);                       // DC table 0
+    j += segment(0xc4, std::string(1, '\x10') + one_code);                       // AC table 0
+    const std::string zeros(3, '\0');
+    j += segment(0xda, std::string("\x01\x01\x00\x00\x00\x00", 6)) + zeros; // DC first scan
+    for (int s = 1; s < scans; ++s) j += segment(0xda, std::string("\x01\x01\x00\x01\x3f\x10", 6)) + zeros;
+    return j + "\xff\xd9";
+}
+
+} // namespace
+
+TEST_CASE("fuzz: a JPEG of more than 100 scans is refused (stb_image decodes each over the whole image)") {
+    // Found by the CI fuzz run: 4 KB of empty refinement scans over 2000x1024 pixels took 0.5 s to
+    // decode at -O2 and 16 s under the sanitizers, and the time grows as scans x pixels.
+    rtw_image good;
+    good.decode(progressive_grey_jpeg(100), "100.jpg");
+    REQUIRE(good.width() == 16);
+    REQUIRE(good.height() == 16);
+    for (int y : {0, 15})
+        for (int x : {0, 15}) CHECK(int(good.pixel_data(x, y)[1]) == 128);
+    // The 101st scan starts after SOI (2), DQT (69), SOF2 (13), two DHTs (22 each), the DC scan
+    // (10 + 3) and 99 refinement scans (13 each).
+    const size_t at = 2 + 69 + 13 + 2 * 22 + 13 + 99 * 13;
+    check_refused([] { rtw_image().decode(progressive_grey_jpeg(101), "101.jpg"); },
+                  {"JPEG has more than 100 scans (the next at byte " + std::to_string(at) + ")"});
+    // The fuzz input, rebuilt by hand: the same layout, 2000x1024 pixels and 304 scans in 4095 bytes.
+    check_refused([] { rtw_image img((fuzz_dir + "jpeg_304_empty_scans.jpg").c_str()); },
+                  {"jpeg_304_empty_scans.jpg", "JPEG has more than 100 scans (the next at byte " + std::to_string(at) + ")"});
+}
+
+TEST_CASE("fuzz: a TGA shorter than its 18-byte header is checked with the zeros stb_image reads") {
+    // Found by a fuzz run: 17 bytes that stb_image reads as a 77x43018 colour-mapped TGA of 16 bits
+    // a pixel (the missing 18th byte read as 0), decoded in a second under the sanitizers.
+    // Width 0x004d, height 0xa80a, 16 bits a pixel (2 bytes), uncompressed (image type 1).
+    check_refused([] { rtw_image img((fuzz_dir + "tga_17_bytes.tga").c_str()); },
+                  {"tga_17_bytes.tga", "TGA image of 77x43018 pixels needs at least " + std::to_string(77 * 43018 * 2) +
+                                           " bytes of data (uncompressed pixels), the file has 0 after its headers"});
+}
+
 TEST_CASE("fuzz: a truncated run-length HDR texture is refused (stb_image 2.27 looped for ever)") {
     // The first scanline's header (2 2, width 8), then the file ends: stb_image reads zeros past
     // the end, and a count of 0 never advances. The header is 45 bytes, the scanline's 4 more.

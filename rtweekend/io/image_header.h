@@ -28,7 +28,8 @@
 //     writes the code lengths of the first past the end of its 257-entry array, and decodes with
 //     the second as it finds it in uninitialised memory; the segments are walked as stb_image
 //     walks them (entropy-coded data is skipped to the next marker), so every table it would build
-//     or use is checked first.
+//     or use is checked first; and more than max_jpeg_scans (100) scans, each of which stb_image
+//     decodes over the whole image even when it holds no data.
 // Other formats (JPEG, TGA, HDR, PNM textures) are left to stb_image, whose stbi_info reads their
 // size; the caller checks that size (rtw_stb_image.h) against the limits and against
 //
@@ -223,12 +224,16 @@ inline size_t jpeg_after_soi(const std::string& b) {
     return pos >= 1 && pos < b.size() && static_cast<unsigned char>(b[pos]) == 0xd8 ? pos + 1 : 0;
 }
 
-inline std::string jpeg_header_problem(const std::string& b) {
+// `scans`, when given, receives the number of scans (SOS segments) walked, at most
+// max_jpeg_scans + 1.
+inline std::string jpeg_header_problem(const std::string& b, size_t* scans = nullptr) {
     auto at = [&](size_t i) { return static_cast<unsigned char>(b[i]); };
     const size_t size = b.size();
     size_t pos = jpeg_after_soi(b);
     bool defined[2][4] = {}; // Huffman tables defined so far: [DC, AC][id]
     bool progressive = false;
+    size_t scan_count = 0;
+    if (scans) *scans = 0;
     while (pos < size) {
         // A marker: 0xff (fill bytes 0xff may repeat), then its code; stb_image skips other bytes
         // between segments.
@@ -262,6 +267,16 @@ inline std::string jpeg_header_problem(const std::string& b) {
             }
         }
         if (marker >= 0xc0 && marker <= 0xc2) progressive = marker == 0xc2; // the frames stb_image reads
+        if (marker == 0xda) {
+            // stb_image decodes every scan over all the blocks of its components, whatever data it
+            // holds, so its time grows as scans x pixels: a few kilobytes of empty scans took
+            // seconds. libjpeg's progressive script writes 10 scans.
+            ++scan_count;
+            if (scans) *scans = scan_count;
+            if (scan_count > max_jpeg_scans)
+                return "JPEG has more than " + std::to_string(max_jpeg_scans) + " scans (the next at byte " +
+                       std::to_string(pos - 2) + "); encoders write a few dozen at most, and each costs a pass over the image";
+        }
         if (marker == 0xda && size - pos >= 3) {
             // A scan's components name the Huffman tables its data is decoded with; stb_image 2.27
             // uses a table the file never defined as it finds it in uninitialised memory (and
@@ -380,7 +395,8 @@ inline std::string image_data_problem(const std::string& b, uint64_t w, uint64_t
     }
     // Otherwise TGA, the one format stb_image knows without a magic number: an 18-byte header, an
     // image ID, a colour map, then the pixels, run-length encoded in image types 9 to 11.
-    if (size < 18) return {};
+    // stb_image reads bytes past the end of the file as zeros, the header's too: so does this.
+    if (size < 18) return image_data_problem(b + std::string(18 - size, '\0'), w, h);
     const unsigned type = static_cast<unsigned char>(b[2]), bits = static_cast<unsigned char>(b[16]);
     const uint64_t map_bytes = static_cast<unsigned char>(b[1]) == 0
                                    ? 0

@@ -9,6 +9,9 @@
 //   max_image_side         2^24: one side of an image (stb_image's own limit)
 //   max_obj_face_corners   1024: corners of one OBJ polygon (tinyobjloader triangulates a polygon
 //                          in time quadratic in its corners)
+//   max_jpeg_scans         100: scans (SOS segments) of one JPEG; stb_image decodes each over the
+//                          whole image, so a few kilobytes of empty scans cost seconds. libjpeg's
+//                          progressive script writes 10
 //
 //   check_image_size(w, h, what)   throws scene_error "WHAT is WxH = N pixels, more than the limit
 //                                  of 268435456 (2^28) pixels" (or names a zero side)
@@ -25,6 +28,7 @@ inline constexpr uint64_t max_input_file_bytes = uint64_t(4) << 30;
 inline constexpr uint64_t max_image_pixels = uint64_t(1) << 28;
 inline constexpr uint64_t max_image_side = uint64_t(1) << 24;
 inline constexpr size_t max_obj_face_corners = 1024;
+inline constexpr size_t max_jpeg_scans = 100;
 
 // "4 GiB (4294967296 bytes)" for messages.
 inline std::string byte_limit_text(uint64_t bytes) {
