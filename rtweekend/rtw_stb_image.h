@@ -35,6 +35,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -143,6 +144,25 @@ inline std::string stb_input_problem(const std::string& bytes) {
     return {}; // not an image stb_image knows: decoding says so
 }
 
+
+// stb_image copies the first IDAT chunk of a PNG into a buffer it has not allocated yet when that
+// chunk is empty: memcpy to a null pointer, harmless in practice but undefined behaviour, which
+// the sanitizer builds stop on. Empty IDAT chunks carry no data, so they are dropped first.
+inline std::string without_empty_png_data_chunks(const std::string& png) {
+    if (png.size() < 8) return png;
+    std::string out = png.substr(0, 8); // the signature
+    size_t pos = 8;
+    while (png.size() - pos >= 12) { // length, type, CRC
+        const auto* b = reinterpret_cast<const unsigned char*>(png.data() + pos);
+        const uint64_t length = uint64_t(b[0]) << 24 | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 8 | b[3];
+        if (length > png.size() - pos - 12) break; // cut short: stb_image reports it
+        if (length != 0 || png.compare(pos + 4, 4, "IDAT") != 0) out.append(png, pos, size_t(12 + length));
+        pos += size_t(12 + length);
+    }
+    out.append(png, pos, std::string::npos);
+    return out;
+}
+
 } // namespace detail
 
 inline double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
@@ -176,8 +196,11 @@ inline bool rtw_image::load(const std::string& filename) {
 inline void rtw_image::decode(const std::string& encoded, const std::string& filename) {
     const std::string problem = detail::stb_input_problem(encoded);
     if (!problem.empty()) throw scene_error("cannot read image texture '" + filename + "': " + problem);
-    const auto* file = reinterpret_cast<const stbi_uc*>(encoded.data());
-    const int file_size = int(encoded.size()); // at most INT_MAX: checked above
+    std::string png_copy; // a PNG without its empty IDAT chunks (see without_empty_png_data_chunks)
+    if (encoded.compare(0, 8, "\x89PNG\r\n\x1a\n", 8) == 0) png_copy = detail::without_empty_png_data_chunks(encoded);
+    const std::string& stb_bytes = png_copy.empty() ? encoded : png_copy;
+    const auto* file = reinterpret_cast<const stbi_uc*>(stb_bytes.data());
+    const int file_size = int(stb_bytes.size()); // at most INT_MAX: checked above
     int w = 0, h = 0, channels = 0;
     const bool hdr = stbi_is_hdr_from_memory(file, file_size) != 0;
     std::vector<float> lin;

@@ -471,6 +471,29 @@ TEST_CASE("fuzz: a TGA shorter than its 18-byte header is checked with the zeros
                                            " bytes of data (uncompressed pixels), the file has 0 after its headers"});
 }
 
+TEST_CASE("fuzz: a PNG texture whose first IDAT chunk is empty decodes (stb_image copied it to a null pointer)") {
+    // Found by the texture harness's long run: the image reader dropped empty IDAT chunks before
+    // stb_image saw them, the texture loader did not, and stb_image's memcpy of the empty chunk to
+    // the buffer it had not yet allocated is undefined behaviour (UBSan stops on it). A 2x3 PNG
+    // whose pixel (1, 2) is white and the rest black, with an empty IDAT inserted after the IHDR
+    // (signature 8 + IHDR 25 bytes); its CRC is CRC-32("IDAT") = 0x35af061e.
+    image img(2, 3);
+    img.set_pixel(1, 2, color(1, 1, 1));
+    std::string png = encode_image("x.png", img);
+    REQUIRE(png.compare(12, 4, "IHDR") == 0);
+    png.insert(33, std::string("\x00\x00\x00\x00IDAT\x35\xaf\x06\x1e", 12));
+    rtw_image texture;
+    texture.decode(png, "empty_idat.png");
+    REQUIRE(texture.width() == 2);
+    REQUIRE(texture.height() == 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 2; ++x)
+            for (int c = 0; c < 3; ++c) CHECK(int(texture.pixel_data(x, y)[c]) == (x == 1 && y == 2 ? 255 : 0));
+    // Found next, in the step written for it: 6 bytes that start like a PNG signature (an
+    // out_of_range exception, where a texture must give one error line).
+    check_refused([] { rtw_image().decode(std::string("\x89PNG\nR", 6), "short.png"); }, {"short.png"});
+}
+
 TEST_CASE("fuzz: a truncated run-length HDR texture is refused (stb_image 2.27 looped for ever)") {
     // The first scanline's header (2 2, width 8), then the file ends: stb_image reads zeros past
     // the end, and a count of 0 never advances. The header is 45 bytes, the scanline's 4 more.

@@ -191,7 +191,9 @@ TEST_CASE("render_samples, adaptive: a stop in round 0 keeps the pixels done, bl
 TEST_CASE("render_samples: a stop raised by another thread during a two-thread render leaves a consistent image"
           * doctest::test_suite("threads")) {
     // As Ctrl-C does: the flag is raised from outside the workers, here by a thread that waits
-    // until 3000 of the 32768 samples (spp 64) are taken. Where each worker is then is up to the
+    // until 3000 of the 32768 samples (spp 64) are taken. A worker that takes a sample past the
+    // 3000th waits for the flag, so that a raiser the system keeps waiting (ctest runs tests side
+    // by side) cannot let the render finish first. Where each worker is then is up to the
     // scheduler; what must hold: a pixel holds the mean of samples 0..n-1, so its red channel is
     // (n - 1) / 2, with n a pass boundary (0, 1, 2, 4, ... 64), and the counts add up.
     render_settings s = one_thread(64);
@@ -205,7 +207,8 @@ TEST_CASE("render_samples: a stop raised by another thread during a two-thread r
     });
     render_result r = render_samples(W, H, s, [&](int x, int, int sample, pcg32&, uint64_t& rays) {
         ++rays;
-        ++taken;
+        if (++taken > 3000)
+            while (!stop.load()) std::this_thread::yield();
         return vec3f(float(sample), float(x), 1.0f);
     });
     raiser.join();

@@ -289,23 +289,6 @@ inline loaded_image decode_pfm(const std::string& bytes, const std::string& name
     return out;
 }
 
-// stb_image copies the first IDAT chunk of a PNG into a buffer it has not allocated yet when that
-// chunk is empty: memcpy to a null pointer, harmless in practice but undefined behaviour, which
-// the sanitizer builds stop on. Empty IDAT chunks carry no data, so they are dropped first.
-inline std::string without_empty_png_data_chunks(const std::string& png) {
-    std::string out = png.substr(0, 8); // the signature
-    size_t pos = 8;
-    while (png.size() - pos >= 12) { // length, type, CRC
-        const auto* b = reinterpret_cast<const unsigned char*>(png.data() + pos);
-        const uint64_t length = uint64_t(b[0]) << 24 | uint64_t(b[1]) << 16 | uint64_t(b[2]) << 8 | b[3];
-        if (length > png.size() - pos - 12) break; // cut short: stb_image reports it
-        if (length != 0 || png.compare(pos + 4, 4, "IDAT") != 0) out.append(png, pos, size_t(12 + length));
-        pos += size_t(12 + length);
-    }
-    out.append(png, pos, std::string::npos);
-    return out;
-}
-
 inline loaded_image decode_with_stb(const std::string& bytes, const std::string& name, const char* format) {
     if (bytes.size() > size_t(INT32_MAX)) read_error(name, std::string(format) + " file is too large");
     // The headers are checked here, not by stb_image, which allocates what they describe first.
