@@ -513,6 +513,27 @@ TEST_CASE("fuzz: a truncated run-length HDR texture is refused (stb_image 2.27 l
     check_refused([&] { rtw_image().decode(zero, "zero.hdr"); }, {"run-length count of 0 at byte 49"});
 }
 
+TEST_CASE("fuzz: an HDR header ended by a line of NUL bytes is walked as stb_image reads it") {
+    // Found by CI's 20 s fuzz run (a timeout; before the fix `render` never finished): stb_image
+    // takes a line that starts with a NUL byte for the empty line ending the header (its token is
+    // an empty C string), and strtol skips the second space of "-Y  1". The walk looked for two
+    // '\n' in a row, found none, and let stb_image loop on the truncated scanline. Here: 11 bytes
+    // of "#?RADIANCE\n", 23 of the FORMAT line, the NUL line (2), the resolution line (11), then
+    // the 4 bytes of a scanline header: the first count would be at byte 51, past the end.
+    const std::string hdr = std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\0\n-Y  1 +X 8\n\x02\x02\x00\x08", 51);
+    check_refused([&] { rtw_image().decode(hdr, "nul_line.hdr"); },
+                  {"HDR scanline 0 has a run-length count of 0 at byte 51 (the file ends there: it is truncated)"});
+    // Completed with one run of 8 per component (136, then the value), it decodes: RGBE
+    // (128, 64, 32, exponent 129) is 128 / 256 * 2 = 1 in red.
+    std::string complete = hdr;
+    for (unsigned char value : {128, 64, 32, 129}) complete += std::string{char(136), char(value)};
+    rtw_image img;
+    img.decode(complete, "complete.hdr");
+    REQUIRE(img.width() == 8);
+    REQUIRE(img.height() == 1);
+    CHECK(img.linear(3, 0).r == 1.0f);
+}
+
 TEST_CASE("fuzz: a JPEG that starts with fill bytes before its SOI is checked as stb_image reads it") {
     check_refused([] { rtw_image img((fuzz_dir + "jpeg_fill_dht.jpg").c_str()); },
                   {"jpeg_fill_dht.jpg", "JPEG Huffman table at byte 7 has 4080 codes"});

@@ -326,15 +326,31 @@ inline std::string jpeg_header_problem(const std::string& b, size_t* scans = nul
 // and a scanline that does not start "2 2", are stored flat, which stb_image reads to the end.
 inline std::string hdr_rle_problem(const std::string& b, uint64_t w, uint64_t h) {
     if (w < 8 || w > 32767) return {};
-    size_t pos = b.find('\n');
-    // stb_image reads header lines of at most 1023 characters; a longer one is cut and the rest of
-    // it skipped, which ends at the same '\n'.
-    while (pos != std::string::npos && pos + 1 < b.size() && b[pos + 1] != '\n') pos = b.find('\n', pos + 1);
-    if (pos == std::string::npos || pos + 1 >= b.size()) return {}; // no empty line: stb_image refuses it
-    pos = b.find('\n', pos + 2);                                    // the resolution line
-    if (pos == std::string::npos) return {};
-    ++pos;
     auto byte = [&](size_t i) -> unsigned { return i < b.size() ? static_cast<unsigned char>(b[i]) : 0u; };
+    // The header's lines, read as stb_image reads them (stbi__hdr_gettoken): a byte, then, while the
+    // file has more and that byte is not '\n', it is kept and the next read; at 1023 kept the rest
+    // of the line is skipped. The header ends at the first line that keeps nothing, or whose first
+    // byte is NUL (a string's end to stb_image): a line of NUL bytes ends it as an empty one does.
+    size_t pos = 0;
+    auto next_line = [&]() -> unsigned { // the line's first kept byte, 0 if none; pos moves past it
+        unsigned first = 0, kept = 0;
+        unsigned c = byte(pos);
+        if (pos < b.size()) ++pos;
+        while (pos < b.size() && c != '\n') {
+            if (kept++ == 0) first = c;
+            if (kept == 1023) {
+                while (pos < b.size() && byte(pos++) != '\n') {
+                }
+                break;
+            }
+            c = byte(pos++);
+        }
+        return first;
+    };
+    next_line(); // "#?RADIANCE" or "#?RGBE": stbi_info checked it
+    while (next_line() != 0) {
+    }
+    next_line(); // the resolution line, which stbi_info read as w x h
     for (uint64_t row = 0; row < h; ++row) {
         if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) return {}; // flat from here on
         if ((uint64_t(byte(pos + 2)) << 8 | byte(pos + 3)) != w) return {};          // stb_image refuses it
