@@ -113,6 +113,25 @@ TEST_CASE("sampler names parse and print") {
     CHECK(render_settings{}.sampler == sampler_kind::sobol); // the default, chosen in BENCHMARKS.md
 }
 
+TEST_CASE("bit reversal of 32 and 64 bits against a bit-by-bit loop") {
+    auto reversed = [](uint64_t v, int bits) { // bit i moves to bits - 1 - i
+        uint64_t r = 0;
+        for (int i = 0; i < bits; ++i) r |= ((v >> i) & 1) << (bits - 1 - i);
+        return r;
+    };
+    CHECK(detail::reverse_bits64(1) == uint64_t(1) << 63);
+    CHECK(detail::reverse_bits32(0x80000000u) == 1u);
+    pcg32 rng(7, 0);
+    for (int i = 0; i < 1000; ++i) {
+        const uint32_t a = rng.next_u32(), b = rng.next_u32();
+        const uint64_t both = uint64_t(a) << 32 | b;
+        CHECK(detail::reverse_bits32(a) == reversed(a, 32));
+        CHECK(detail::reverse_bits64(both) == reversed(both, 64));
+        // The two halves reversed in place of each other, as get2d uses it.
+        CHECK(uint32_t(detail::reverse_bits64(both)) == detail::reverse_bits32(a));
+    }
+}
+
 TEST_CASE("Sobol: the first points of dimensions 0 and 1 from their definitions") {
     // Dimension 0: 1/2, 1/4, 3/4, 1/8, ... (van der Corput). Dimension 1, columns 1/2, 3/4, 5/8,
     // 15/16 (v_i = v_{i-1} xor v_{i-1}/2), index i the xor of the columns of its set bits:

@@ -170,6 +170,21 @@ inline constexpr uint32_t reverse_bits32(uint32_t v) {
 #endif
 }
 
+// Two words' bits reversed at once: reverse_bits64(uint64_t(a) << 32 | b) is
+// uint64_t(reverse_bits32(b)) << 32 | reverse_bits32(a), for the cost of one reversal.
+inline constexpr uint64_t reverse_bits64(uint64_t v) {
+    v = ((v >> 1) & 0x5555555555555555ull) | ((v & 0x5555555555555555ull) << 1);
+    v = ((v >> 2) & 0x3333333333333333ull) | ((v & 0x3333333333333333ull) << 2);
+    v = ((v >> 4) & 0x0f0f0f0f0f0f0f0full) | ((v & 0x0f0f0f0f0f0f0f0full) << 4);
+#if defined(__GNUC__)
+    return __builtin_bswap64(v);
+#else
+    v = ((v >> 8) & 0x00ff00ff00ff00ffull) | ((v & 0x00ff00ff00ff00ffull) << 8);
+    v = ((v >> 16) & 0x0000ffff0000ffffull) | ((v & 0x0000ffff0000ffffull) << 16);
+    return (v >> 32) | (v << 32);
+#endif
+}
+
 // A 32-bit hash of two words (mix64 of their concatenation, folded).
 inline constexpr uint32_t hash32(uint64_t a, uint64_t b) {
     const uint64_t h = mix64(a * 0x9e3779b97f4a7c15ULL ^ mix64(b + 0x632be59bd9b4e019ULL));
@@ -340,10 +355,11 @@ inline uniform2 pixel_sampler::get2d(uint32_t dimension) {
         const uint64_t h = plan_.dimension_hash(dimension) ^ high_index_hash_;
         const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_, uint32_t(h));
         const uint32_t scramble0 = uint32_t(h >> 32), scramble1 = scramble0 * 0x9e3779b9u + 0x7f4a7c15u;
-        return {detail::fraction_to_float(detail::reverse_bits32(
-                    detail::laine_karras_hash(detail::reverse_bits32(reversed), scramble0))),
-                detail::fraction_to_float(detail::reverse_bits32(
-                    detail::laine_karras_hash(detail::reversed_sobol_dimension1(reversed), scramble1)))};
+        const uint32_t x = detail::laine_karras_hash(detail::reverse_bits32(reversed), scramble0);
+        const uint32_t y = detail::laine_karras_hash(detail::reversed_sobol_dimension1(reversed), scramble1);
+        // Both scrambled coordinates back to fractions in one reversal: reverse(x) low, reverse(y) high.
+        const uint64_t both = detail::reverse_bits64(uint64_t(x) << 32 | y);
+        return {detail::fraction_to_float(uint32_t(both)), detail::fraction_to_float(uint32_t(both >> 32))};
     }
     }
     return draw_2d(rng_);
