@@ -8,8 +8,9 @@
 // flag at interrupt_requested and installs on_interrupt() for SIGINT; the render returns the mean
 // of the samples each pixel took so far, write_output() writes that image (atomically, like any
 // output), says on stderr what it holds, and the app exits with status 130 (128 + SIGINT, as a
-// shell reports a process killed by it). The handler puts the default one back, so a second
-// Ctrl-C kills at once.
+// shell reports a process killed by it). A second Ctrl-C, or one once the render is over, kills at
+// once; a second SIGINT within half a second of the first is the same request delivered twice
+// (see on_interrupt).
 
 #include <rtweekend/camera.h>
 #include <rtweekend/io/image_write.h>
@@ -30,28 +31,65 @@
 #include <utility>
 #include <vector>
 
+#include <time.h> // clock_gettime (POSIX)
+
 namespace app {
 
-// Set by the SIGINT handler, read by the renderer's workers (render_settings::stop). The one
-// mutable global of the project, and necessarily so: a signal handler can reach nothing else. It
-// is a lock-free atomic, which a handler may store to (C++17 [support.signal]).
+// Set by the SIGINT handler, read by the renderer's workers (render_settings::stop). With
+// interrupt_state below, the only mutable globals of the project, and necessarily so: a signal
+// handler can reach nothing else. Both are lock-free atomics, which a handler may touch (C++17
+// [support.signal]).
 inline std::atomic<bool> interrupt_requested{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "a signal handler may only touch lock-free atomics");
 
-// The SIGINT handler: asks the render to stop, and restores the default action so that a second
-// Ctrl-C ends the program at once (signal() on the signal being handled is allowed in a handler).
+// Where the render is, for the handler: rendering and not yet asked to stop (0), asked to stop at
+// this CLOCK_MONOTONIC time in nanoseconds (> 0), or over, its image being written (-1).
+inline constexpr int64_t interrupt_state_rendering = 0, interrupt_state_over = -1;
+inline std::atomic<int64_t> interrupt_state{interrupt_state_rendering};
+static_assert(std::atomic<int64_t>::is_always_lock_free, "a signal handler may only touch lock-free atomics");
+
+// A second SIGINT this soon after the first is the same request: GNU timeout signals the program
+// and then its whole process group, so `timeout -s INT` delivers two SIGINTs microseconds apart
+// (more on a loaded machine), and a handler that ran between them used to be killed by the second.
+// A person's second Ctrl-C comes later than this.
+inline constexpr int64_t repeated_interrupt_ns = 500'000'000;
+
+// The SIGINT handler. The first asks the render to stop; a repeat within repeated_interrupt_ns is
+// ignored; a later one, or any once the render is over, ends the program at once: the default
+// action, raised again (it is delivered when the handler returns). clock_gettime and raise are
+// async-signal-safe (POSIX.1-2008, 2.4.3).
 extern "C" inline void on_interrupt(int) {
-    interrupt_requested.store(true);
+    timespec t{};
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    const int64_t now = int64_t(t.tv_sec) * 1'000'000'000 + int64_t(t.tv_nsec) + 1; // > 0
+    int64_t seen = interrupt_state_rendering;
+    if (interrupt_state.compare_exchange_strong(seen, now)) {
+        interrupt_requested.store(true);
+        return;
+    }
+    if (seen > 0 && now - seen < repeated_interrupt_ns) return;
     std::signal(SIGINT, SIG_DFL);
+    std::raise(SIGINT);
 }
 
-// Installs on_interrupt() for SIGINT (once; apps render once or a few times in a row).
+// Installs on_interrupt() for SIGINT (once), and makes a render that starts after an earlier one
+// was written stoppable by Ctrl-C again.
 inline void catch_interrupts() {
     static const bool installed = [] {
         std::signal(SIGINT, on_interrupt);
         return true;
     }();
     (void)installed;
+    int64_t over = interrupt_state_over;
+    interrupt_state.compare_exchange_strong(over, interrupt_state_rendering);
+}
+
+// The render is over: from here on Ctrl-C ends the program at once (outputs are written
+// atomically, so that leaves no half-written file), unless it repeats a request to stop that came
+// during the render (on_interrupt).
+inline void render_over() {
+    int64_t rendering = interrupt_state_rendering;
+    interrupt_state.compare_exchange_strong(rendering, interrupt_state_over);
 }
 
 struct options {
@@ -349,9 +387,7 @@ inline void write_output(const options& o, const rt::image& img) {
 // on stderr how far it got and how many samples the image holds (no image format carries the
 // note: PFM, for one, has no place for comments), and exits with status 130.
 inline void write_output(const options& o, const rt::render_result& r) {
-    // The render is over: Ctrl-C from here on ends the program as usual (the write is atomic, so
-    // it leaves no half-written file).
-    std::signal(SIGINT, SIG_DFL);
+    render_over();
     write_output(o, r.img);
     if (!r.stats.interrupted) return;
     const rt::render_stats& s = r.stats;

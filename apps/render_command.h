@@ -28,7 +28,6 @@
 #include <rtweekend/io/text_lines.h>
 #include <rtweekend/io/xml_scene.h>
 
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -189,7 +188,7 @@ inline rt::sample_slice make_slice(const rt::render_settings& settings, const rt
 // nothing written.
 inline void write_slice_output(const options& o, const rt::render_settings& settings, const rt::render_result& r,
                                const std::string& scene_fingerprint) {
-    std::signal(SIGINT, SIG_DFL);
+    render_over();
     if (r.stats.interrupted) {
         std::fprintf(stderr,
                      "%s: interrupted after %d %% of the slice; nothing written (a slice must hold every sample of "
