@@ -24,10 +24,14 @@
 // The file is read whole by io/file.h's read_file (a regular file of at most 4 GiB), and its
 // headers are checked before stb_image decodes it (io/image_header.h for PNG and BMP, then the
 // size stb_image reports against io/input_limits.h's 2^28 pixels): stb_image allocates the image a
-// header describes before it finds out whether the file holds it.
+// header describes before it finds out whether the file holds it. A JPEG file's entropy-coded data
+// is then read through by libjpeg-turbo when the build has it (io/jpeg_check.h): stb_image 2.27
+// misbehaves on some damaged data, and a cut-short JPEG is refused rather than filled with grey.
+// The pixels are stb_image's either way.
 
 #include "io/file.h"
 #include "io/image_header.h"
+#include "io/jpeg_check.h"
 #include "io/text_lines.h"
 #include "scene_error.h"
 
@@ -194,7 +198,17 @@ inline bool rtw_image::load(const std::string& filename) {
 }
 
 inline void rtw_image::decode(const std::string& encoded, const std::string& filename) {
-    const std::string problem = detail::stb_input_problem(encoded);
+    std::string problem = detail::stb_input_problem(encoded);
+#if defined(RTWEEKEND_HAVE_LIBJPEG) && RTWEEKEND_HAVE_LIBJPEG
+    // A JPEG's entropy-coded data, read through by libjpeg-turbo first (io/jpeg_check.h says why),
+    // in the frame whose size stb_input_problem checked. A file stb_image cannot even read the
+    // headers of, it refuses itself.
+    int jpeg_w = 0, jpeg_h = 0, jpeg_channels = 0;
+    if (problem.empty() && detail::jpeg_after_soi(encoded) &&
+        stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(encoded.data()), int(encoded.size()), &jpeg_w, &jpeg_h,
+                              &jpeg_channels))
+        problem = detail::jpeg_data_problem(encoded, jpeg_w, jpeg_h);
+#endif
     if (!problem.empty()) throw scene_error("cannot read image texture '" + filename + "': " + problem);
     std::string png_copy; // a PNG without its empty IDAT chunks (see without_empty_png_data_chunks)
     if (encoded.compare(0, 8, "\x89PNG\r\n\x1a\n", 8) == 0) png_copy = detail::without_empty_png_data_chunks(encoded);

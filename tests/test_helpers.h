@@ -6,6 +6,7 @@
 #include <rtweekend/engine/bsdf.h>
 #include <rtweekend/engine/image.h>
 #include <rtweekend/engine/rng.h>
+#include <rtweekend/scene_error.h>
 
 #include <doctest/doctest.h>
 
@@ -16,6 +17,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <initializer_list>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -23,6 +26,26 @@
 #include <unistd.h>
 
 namespace test {
+
+// Runs `f`, which must throw one scene_error whose message is one line (no line break or NUL)
+// holding every fragment.
+inline void check_scene_error(const std::function<void()>& f, std::initializer_list<std::string> fragments) {
+    bool threw = false;
+    try {
+        f();
+    } catch (const rt::scene_error& e) {
+        threw = true;
+        const std::string msg = e.what();
+        CAPTURE(msg);
+        CHECK(msg.find('\n') == std::string::npos);
+        CHECK(msg.find('\0') == std::string::npos);
+        for (const std::string& fragment : fragments) {
+            CAPTURE(fragment);
+            CHECK(msg.find(fragment) != std::string::npos);
+        }
+    }
+    CHECK(threw);
+}
 
 // A fresh, empty directory under the system's temporary directory, removed with everything in it
 // at scope exit. Unique per process, object and moment, so tests may run in parallel.

@@ -63,24 +63,7 @@ std::string read_file(const fs::path& p) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// Runs f, expects a scene_error whose one-line message contains every given fragment.
-template <class F>
-void check_scene_error(F f, std::initializer_list<std::string> fragments) {
-    bool threw = false;
-    try {
-        f();
-    } catch (const scene_error& e) {
-        threw = true;
-        std::string msg = e.what();
-        CAPTURE(msg);
-        CHECK(msg.find('\n') == std::string::npos);
-        for (const std::string& s : fragments) {
-            CAPTURE(s);
-            CHECK(msg.find(s) != std::string::npos);
-        }
-    }
-    CHECK(threw);
-}
+using test::check_scene_error;
 
 } // namespace
 
