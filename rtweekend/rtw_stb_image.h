@@ -39,7 +39,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -134,20 +133,23 @@ namespace detail {
 // What is wrong with an encoded image before stb_image may decode it, "" if nothing: the PNG and
 // BMP headers (image_header.h), then, for every format stb_image knows, the size it reads from
 // the header (stbi_info parses headers only) against the limits of input_limits.h and against
-// what the file's length can hold (image_data_problem, image_header.h).
+// what the file's length can hold (image_data_problem, image_header.h); last, when the build has
+// libjpeg-turbo, a JPEG's entropy-coded data read through in that frame (io/jpeg_check.h says why).
 inline std::string stb_input_problem(const std::string& bytes) {
     std::string problem = image_header_problem(bytes);
     if (!problem.empty()) return problem;
     if (bytes.size() > size_t(INT_MAX)) return "the file is larger than stb_image can decode (2 GiB)";
     int w = 0, h = 0, channels = 0;
-    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels)) {
-        const uint64_t width = uint64_t(w < 0 ? 0 : w), height = uint64_t(h < 0 ? 0 : h);
-        problem = image_size_problem(width, height, stb_format_name(bytes));
-        return problem.empty() ? image_data_problem(bytes, width, height) : problem;
-    }
-    return {}; // not an image stb_image knows: decoding says so
+    if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels))
+        return {}; // not an image stb_image knows, or headers it cannot read: decoding says so
+    const uint64_t width = uint64_t(w < 0 ? 0 : w), height = uint64_t(h < 0 ? 0 : h);
+    problem = image_size_problem(width, height, stb_format_name(bytes));
+    if (problem.empty()) problem = image_data_problem(bytes, width, height);
+#if defined(RTWEEKEND_HAVE_LIBJPEG) && RTWEEKEND_HAVE_LIBJPEG
+    if (problem.empty() && jpeg_after_soi(bytes)) problem = jpeg_data_problem(bytes, w, h);
+#endif
+    return problem;
 }
-
 
 // stb_image copies the first IDAT chunk of a PNG into a buffer it has not allocated yet when that
 // chunk is empty: memcpy to a null pointer, harmless in practice but undefined behaviour, which
@@ -198,17 +200,7 @@ inline bool rtw_image::load(const std::string& filename) {
 }
 
 inline void rtw_image::decode(const std::string& encoded, const std::string& filename) {
-    std::string problem = detail::stb_input_problem(encoded);
-#if defined(RTWEEKEND_HAVE_LIBJPEG) && RTWEEKEND_HAVE_LIBJPEG
-    // A JPEG's entropy-coded data, read through by libjpeg-turbo first (io/jpeg_check.h says why),
-    // in the frame whose size stb_input_problem checked. A file stb_image cannot even read the
-    // headers of, it refuses itself.
-    int jpeg_w = 0, jpeg_h = 0, jpeg_channels = 0;
-    if (problem.empty() && detail::jpeg_after_soi(encoded) &&
-        stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(encoded.data()), int(encoded.size()), &jpeg_w, &jpeg_h,
-                              &jpeg_channels))
-        problem = detail::jpeg_data_problem(encoded, jpeg_w, jpeg_h);
-#endif
+    const std::string problem = detail::stb_input_problem(encoded);
     if (!problem.empty()) throw scene_error("cannot read image texture '" + filename + "': " + problem);
     std::string png_copy; // a PNG without its empty IDAT chunks (see without_empty_png_data_chunks)
     if (encoded.compare(0, 8, "\x89PNG\r\n\x1a\n", 8) == 0) png_copy = detail::without_empty_png_data_chunks(encoded);

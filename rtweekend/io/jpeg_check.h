@@ -2,7 +2,6 @@
 // jpeg_check: a JPEG file's entropy-coded data read through by libjpeg-turbo (Debian's
 // libjpeg-dev) before stb_image decodes it, for image textures.
 //
-//   jpeg_checked_by_libjpeg        whether this build has the library (see below)
 //   detail::jpeg_data_problem(bytes, width, height)
 //                                  "" when libjpeg reads every scan of the JPEG file `bytes` to
 //                                  its end with every code sound, in a frame of width x height
@@ -32,9 +31,9 @@
 // an unknown JFIF or Adobe version, a bad ICC profile) pass.
 //
 // The library is optional: CMake defines RTWEEKEND_HAVE_LIBJPEG=1 on the rtweekend target when it
-// finds it, and rtw_image then checks every JPEG file here. Without that define this header still
-// compiles, jpeg_checked_by_libjpeg is false, and stb_image alone reads JPEG files, so the headers
-// can be used with nothing but stb_image, as the book's are.
+// finds it, and every JPEG texture is checked here (detail::stb_input_problem, rtw_stb_image.h).
+// Without that define this header declares nothing, and stb_image alone reads JPEG files, so the
+// headers can be used with nothing but stb_image, as the book's are.
 //
 // The caller checks the file's headers first (image_header.h, input_limits.h), so this check is
 // given only files whose size, as stb_image reads it, is within the limits and the file's length
@@ -65,8 +64,6 @@
 namespace rt {
 
 #if defined(RTWEEKEND_HAVE_LIBJPEG) && RTWEEKEND_HAVE_LIBJPEG
-inline constexpr bool jpeg_checked_by_libjpeg = true;
-
 namespace detail {
 
 // libjpeg reports errors by calling error_exit, which must not return: it jumps back into
@@ -140,8 +137,6 @@ inline std::string jpeg_data_problem(const std::string& bytes, int width, int he
 }
 
 } // namespace detail
-#else
-inline constexpr bool jpeg_checked_by_libjpeg = false;
 #endif
 
 } // namespace rt
