@@ -487,6 +487,25 @@ TEST_CASE("light sampling: the quad's choice of strategy, and where nothing can 
         REQUIRE(sample_quad_light(p, Q, u, v, 0.4f, 0.7f, s, quad_sampling::solid_angle));
         CHECK(rel(s.pdf, 1.0 / S) < 1e-6);
     }
+    SUBCASE("a rectangle that looks small is sampled by area: A |cos| / d^2 at its centre below 0.1") {
+        // A unit square seen straight on from its centre's normal at height h: the estimate is
+        // 1 / h^2; its exact solid angle 4 asin(1 / (1 + 4 h^2)) (the centred rectangle's closed
+        // form, 4 asin(a b / sqrt((a^2 + 4 h^2)(b^2 + 4 h^2)))) is inside [3e-4, 6.22] for both.
+        const vec3f Q(-0.5f, -0.5f, 0), u(1, 0, 0), v(0, 1, 0);
+        for (float h : {2.0f, 4.0f}) {
+            CAPTURE(h);
+            const vec3f p(0, 0, h);
+            const double exact = 4 * std::asin(1.0 / (1.0 + 4.0 * double(h) * double(h)));
+            CHECK(rel(quad_solid_angle(p, Q, u, v), exact) < 1e-5);
+            const bool large = 1.0f / (h * h) >= quad_solid_angle_worth; // 0.25 and 0.0625 against 0.1
+            CHECK(large == (h == 2.0f));
+            light_sample s;
+            REQUIRE(sample_quad_light(p, Q, u, v, 0.5f, 0.5f, s));
+            // The centre of the square: by area its density is d^2 / (A cos) = h^2.
+            CHECK(rel(s.pdf, large ? 1.0 / exact : double(h) * double(h)) < 1e-5);
+            CHECK(rel(quad_light_pdf(p, Q, u, v, s.y, s.n), s.pdf) < 1e-6);
+        }
+    }
     SUBCASE("p on the light's plane, degenerate shapes") {
         const vec3f Q(0, 0, 0), u(1, 0, 0), v(0, 1, 0);
         light_sample s;

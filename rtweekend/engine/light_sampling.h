@@ -43,8 +43,9 @@ struct light_sample {
 };
 
 // How sample_quad_light and quad_light_pdf sample a quad. automatic: by solid angle when the quad
-// is a rectangle whose solid angle from p lies in [quad_min_solid_angle, quad_max_solid_angle] and
-// which float can warp accurately from p (quad_max_condition), by area otherwise. area: always by
+// looks large from p (quad_solid_angle_worth) and is a rectangle whose solid angle from p lies in
+// [quad_min_solid_angle, quad_max_solid_angle] and which float can warp accurately from p
+// (quad_max_condition), by area otherwise. area: always by
 // area. solid_angle: by solid angle whenever the quad is a rectangle not seen edge-on, the
 // thresholds ignored (for measurements).
 enum class quad_sampling { automatic, area, solid_angle };
@@ -56,6 +57,16 @@ enum class quad_sampling { automatic, area, solid_angle };
 // MinSphericalSampleArea and MaxSphericalSampleArea.
 inline constexpr float quad_min_solid_angle = 3e-4f;
 inline constexpr float quad_max_solid_angle = 6.22f;
+// Solid-angle sampling costs four arc tangents, a sine, a cosine and ten square roots per sample
+// and as much again per density; area sampling, a few multiplications. The two differ in noise only
+// where the factor d^2 / cos theta_y varies much over the quad, that is, where the quad looks large
+// from p. So `automatic` builds the spherical rectangle only when a cheap estimate of the solid
+// angle, A |cos theta_c| / d_c^2 at the quad's centre c, reaches this. Measured with nee at 64 spp,
+// 300 wide, on 2 threads (BENCHMARKS.md, section 6), against solid angle wherever it applies:
+// book 3's Cornell box, the same error in 0.71x the time; book 2's Cornell box, 1.01x the error
+// in 0.69x the time; book 2's simple light (a 2x2 light a few units from the objects), 1.02x the
+// error in the same time. Thresholds of 0.05, 0.2 and 0.5 traded the one against the other.
+inline constexpr float quad_solid_angle_worth = 0.1f;
 // Between those, the warp in float is still distorted where the rectangle is seen at a grazing
 // angle or far off to the side (measured against the same warp in double over random rectangles:
 // cells of 1/16 of the unit square carried up to 2.2 times their share of solid angle). Two
@@ -266,6 +277,19 @@ inline void sample_spherical_rectangle(const spherical_rectangle& r, float u1, f
     b = std::fmin(std::fmax(yv - r.y0, 0.0f), r.y1 - r.y0);
 }
 
+// Whether the quad looks large enough from p for solid-angle sampling to pay (quad_solid_angle_worth).
+// Out of line for the reason make_spherical_rectangle is: the sampler and the density must agree.
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+inline bool quad_looks_large(const vec3f& p, const vec3f& Q, const vec3f& u, const vec3f& v) {
+    const vec3f normal = cross(u, v);
+    const vec3f to = Q + 0.5f * (u + v) - p;
+    const float d2 = length_squared(to);
+    // |normal| = A, so |normal . to| = A d_c |cos theta_c|.
+    return std::fabs(dot(normal, to)) >= quad_solid_angle_worth * d2 * std::sqrt(d2);
+}
+
 inline bool quad_uses_solid_angle(const spherical_rectangle& r, quad_sampling strategy) {
     if (!r.valid()) return false;
     switch (strategy) {
@@ -401,7 +425,8 @@ inline float quad_solid_angle_pdf(const vec3f& p, const vec3f& Q, const vec3f& u
 
 inline bool sample_quad_light(const vec3f& p, const vec3f& Q, const vec3f& u, const vec3f& v, float u1, float u2,
                               light_sample& s, quad_sampling strategy) {
-    if (strategy != quad_sampling::area) {
+    if (strategy == quad_sampling::solid_angle ||
+        (strategy == quad_sampling::automatic && detail::quad_looks_large(p, Q, u, v))) {
         const detail::spherical_rectangle r = detail::make_spherical_rectangle(p, Q, u, v);
         if (detail::quad_uses_solid_angle(r, strategy)) return detail::sample_rectangle(r, p, Q, u, v, u1, u2, s);
     }
@@ -410,7 +435,8 @@ inline bool sample_quad_light(const vec3f& p, const vec3f& Q, const vec3f& u, co
 
 inline float quad_light_pdf(const vec3f& p, const vec3f& Q, const vec3f& u, const vec3f& v, const vec3f& y,
                             const vec3f& ny, quad_sampling strategy) {
-    if (strategy != quad_sampling::area) {
+    if (strategy == quad_sampling::solid_angle ||
+        (strategy == quad_sampling::automatic && detail::quad_looks_large(p, Q, u, v))) {
         const detail::spherical_rectangle r = detail::make_spherical_rectangle(p, Q, u, v);
         if (detail::quad_uses_solid_angle(r, strategy)) return detail::density_from_measure(r.solid_angle);
     }
