@@ -45,9 +45,8 @@ struct light_sample {
 // How sample_quad_light and quad_light_pdf sample a quad. automatic: by solid angle when the quad
 // looks large from p (quad_solid_angle_worth) and is a rectangle whose solid angle from p lies in
 // [quad_min_solid_angle, quad_max_solid_angle] and which float can warp accurately from p
-// (quad_max_condition), by area otherwise. area: always by
-// area. solid_angle: by solid angle whenever the quad is a rectangle not seen edge-on, the
-// thresholds ignored (for measurements).
+// (quad_max_condition), by area otherwise. area: always by area. solid_angle: by solid angle
+// whenever the quad is a rectangle not seen edge-on, the thresholds ignored (for measurements).
 enum class quad_sampling { automatic, area, solid_angle };
 
 // Below 3e-4 sr the light is so small or far that the area-to-solid-angle factor varies little
@@ -290,13 +289,16 @@ inline bool quad_looks_large(const vec3f& p, const vec3f& Q, const vec3f& u, con
     return std::fabs(dot(normal, to)) >= quad_solid_angle_worth * d2 * std::sqrt(d2);
 }
 
-inline bool quad_uses_solid_angle(const spherical_rectangle& r, quad_sampling strategy) {
+// The choice sample_quad_light and quad_light_pdf both make: true (and r the spherical rectangle)
+// when `strategy` samples the quad by solid angle from p. `automatic` first asks the cheap
+// quad_looks_large and builds the rectangle only if it does.
+inline bool quad_by_solid_angle(const vec3f& p, const vec3f& Q, const vec3f& u, const vec3f& v, quad_sampling strategy,
+                                spherical_rectangle& r) {
+    if (strategy == quad_sampling::area || (strategy == quad_sampling::automatic && !quad_looks_large(p, Q, u, v)))
+        return false;
+    r = make_spherical_rectangle(p, Q, u, v);
     if (!r.valid()) return false;
-    switch (strategy) {
-    case quad_sampling::area: return false;
-    case quad_sampling::solid_angle: return true;
-    case quad_sampling::automatic: break;
-    }
+    if (strategy == quad_sampling::solid_angle) return true;
     // Comparisons only, of values made out of line: the same answer for the sampler and the pdf.
     return r.solid_angle >= quad_min_solid_angle && r.solid_angle <= quad_max_solid_angle && r.accurate;
 }
@@ -425,21 +427,15 @@ inline float quad_solid_angle_pdf(const vec3f& p, const vec3f& Q, const vec3f& u
 
 inline bool sample_quad_light(const vec3f& p, const vec3f& Q, const vec3f& u, const vec3f& v, float u1, float u2,
                               light_sample& s, quad_sampling strategy) {
-    if (strategy == quad_sampling::solid_angle ||
-        (strategy == quad_sampling::automatic && detail::quad_looks_large(p, Q, u, v))) {
-        const detail::spherical_rectangle r = detail::make_spherical_rectangle(p, Q, u, v);
-        if (detail::quad_uses_solid_angle(r, strategy)) return detail::sample_rectangle(r, p, Q, u, v, u1, u2, s);
-    }
+    detail::spherical_rectangle r;
+    if (detail::quad_by_solid_angle(p, Q, u, v, strategy, r)) return detail::sample_rectangle(r, p, Q, u, v, u1, u2, s);
     return sample_quad_area(p, Q, u, v, u1, u2, s);
 }
 
 inline float quad_light_pdf(const vec3f& p, const vec3f& Q, const vec3f& u, const vec3f& v, const vec3f& y,
                             const vec3f& ny, quad_sampling strategy) {
-    if (strategy == quad_sampling::solid_angle ||
-        (strategy == quad_sampling::automatic && detail::quad_looks_large(p, Q, u, v))) {
-        const detail::spherical_rectangle r = detail::make_spherical_rectangle(p, Q, u, v);
-        if (detail::quad_uses_solid_angle(r, strategy)) return detail::density_from_measure(r.solid_angle);
-    }
+    detail::spherical_rectangle r;
+    if (detail::quad_by_solid_angle(p, Q, u, v, strategy, r)) return detail::density_from_measure(r.solid_angle);
     return quad_area_pdf(p, Q, u, v, y, ny);
 }
 
