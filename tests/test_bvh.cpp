@@ -150,6 +150,24 @@ TEST_CASE("bvh: small and degenerate inputs") {
     for (int n : cs.seen[1]) CHECK(n == 1);
     CHECK(s.stats.depth < 96);
 
+    // Centres spread over a denormal width along x (1e-39 apart at most): bins / extent overflows
+    // to infinity there, so that axis offers no planes (before the fix, 0 * inf made a NaN bin,
+    // undefined behaviour in its conversion to int: the xml_scene fuzz harness found it). y
+    // still splits them.
+    std::vector<bvh_primitive> thin;
+    for (uint32_t i = 0; i < 1000; ++i) {
+        box3f t;
+        t.grow(vec3f(float(i % 2) * 1e-39f, float(i), 0));
+        t.grow(vec3f(float(i % 2) * 1e-39f, float(i) + 0.5f, 1));
+        thin.push_back({t, shape_kind::triangle, i});
+    }
+    bvh8 th = build_bvh8(thin);
+    checker ct(th, thin, bvh_build_options{}.max_leaf_size);
+    ct.walk(th.root, nullptr, 0);
+    CHECK(ct.problems == 0);
+    for (int n : ct.seen[1]) CHECK(n == 1);
+    CHECK(th.stats.depth < 32); // split along y: a balanced tree of 1000 leaves' worth
+
     // Leaf size is honoured, up to the encoding's limit of 16.
     bvh_build_options big;
     big.max_leaf_size = 64;

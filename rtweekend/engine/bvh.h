@@ -219,8 +219,10 @@ class bvh_builder {
         if (depth < forced_median_depth) {
             for (int axis = 0; axis < 3; ++axis) {
                 float lo = centres.lo[axis], extent = centres.hi[axis] - lo;
-                if (!(extent > 0)) continue;
-                float scale = float(bins) / extent;
+                // An extent so small (denormal) that bins / extent overflows has no planes to
+                // offer either; an infinite scale would make 0 * inf a NaN bin below.
+                const float scale = float(bins) / extent;
+                if (!(extent > 0) || !std::isfinite(scale)) continue;
                 box3f bin_bounds[max_bins];
                 uint32_t bin_count[max_bins] = {};
                 for (uint32_t i = first; i < first + count; ++i) {
