@@ -55,16 +55,16 @@ struct light {
 // One light sample, as seen from the shading point p.
 struct light_choice {
     vec3f wi;              // unit direction from p towards the light
-    float distance = 0;    // to the sampled point: a shadow ray tests (0, distance)
     vec3f radiance;        // arriving at p along wi if nothing is in the way (I / d^2 for a point light)
     float pdf = 0;         // solid-angle density of wi times the light's selection probability;
                            // for a point light, the selection probability alone
     bool delta = false;    // a point light: no material-sampled ray can find it
+    vec3f y;               // the sampled point (a point light's position), where the shadow ray ends
     // For a textured area light (texture != UINT32_MAX), whose radiance the caller looks up: the
-    // light, the sampled point and its outward unit normal.
+    // light and the outward unit normal at y.
     uint32_t texture = UINT32_MAX;
     uint32_t light = 0;
-    vec3f y, n;
+    vec3f n;
 };
 
 class light_set {
@@ -199,8 +199,8 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
         const vec3f to = l.p0 - p;
         const float d2 = length_squared(to);
         if (!(d2 > 0)) return false;
-        s.distance = std::sqrt(d2);
-        s.wi = to / s.distance;
+        s.wi = to / std::sqrt(d2);
+        s.y = l.p0;
         s.radiance = l.emission / d2;
         s.pdf = pmf;
         s.delta = true;
@@ -216,7 +216,7 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     }
     if (!ok || !(ls.pdf > 0)) return false;
     s.wi = ls.wi;
-    s.distance = ls.distance;
+    s.y = ls.y;
     // One-sided lights emit towards the side their normal points to.
     const bool front = dot(ls.wi, ls.n) < 0;
     s.radiance = front || l.two_sided ? l.emission : vec3f{0, 0, 0};
@@ -225,7 +225,6 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     s.texture = l.texture;
     if (l.texture != UINT32_MAX) {
         s.light = t.members[slot];
-        s.y = ls.y;
         s.n = ls.n;
     }
     return true;
