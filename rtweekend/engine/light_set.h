@@ -60,11 +60,10 @@ struct light_choice {
                            // for a point light, the selection probability alone
     bool delta = false;    // a point light: no material-sampled ray can find it
     vec3f y;               // the sampled point (a point light's position), where the shadow ray ends
-    // For a textured area light (texture != UINT32_MAX), whose radiance the caller looks up: the
-    // light and the outward unit normal at y.
+    vec3f n;               // an area light's outward unit normal at y
+    // For a textured area light (texture != UINT32_MAX), whose radiance the caller looks up: the light.
     uint32_t texture = UINT32_MAX;
     uint32_t light = 0;
-    vec3f n;
 };
 
 class light_set {
@@ -217,16 +216,14 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     if (!ok || !(ls.pdf > 0)) return false;
     s.wi = ls.wi;
     s.y = ls.y;
+    s.n = ls.n;
     // One-sided lights emit towards the side their normal points to.
     const bool front = dot(ls.wi, ls.n) < 0;
     s.radiance = front || l.two_sided ? l.emission : vec3f{0, 0, 0};
     s.pdf = pmf * ls.pdf;
     s.delta = false;
     s.texture = l.texture;
-    if (l.texture != UINT32_MAX) {
-        s.light = t.members[slot];
-        s.n = ls.n;
-    }
+    if (l.texture != UINT32_MAX) s.light = t.members[slot];
     return true;
 }
 
