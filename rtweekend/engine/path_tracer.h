@@ -78,12 +78,19 @@ inline ray3f shadow_ray(const surface_hit& hit, const light_choice& lc, bool in_
 
 inline bool is_black(const vec3f& c) { return !(c.x > 0 || c.y > 0 || c.z > 0); }
 
-// Russian roulette (nee only): past a number of scattering events, a path whose throughput has
-// fallen to q (its largest channel) goes on with probability q and is weighed by 1/q when it does,
-// so the mean is unchanged (Arvo and Kirk 1990; pbrt, 4th ed., 14.1.5). It starts after two
-// events in a scene with emitters (closed rooms, long paths: on book 3's Cornell box, 1.26x the
-// efficiency of starting after five) and after five in a scene lit by the sky alone (paths escape
-// soon; starting after three cost the cover scene 5 % of its efficiency). BENCHMARKS.md, section 6.
+// Russian roulette (nee only): past a number of scattering events, a path whose throughput t
+// (its largest channel) has fallen below roulette_weight goes on with probability
+// q = t / roulette_weight and is weighed by 1/q when it does, so the mean is unchanged (Arvo and
+// Kirk 1990; pbrt, 4th ed., 14.1.5) and every survivor carries roulette_weight. pbrt and the
+// first version here used 1: survivors then carry the full weight of a camera ray, and in a
+// closed room a caustic reached three to nine bounces deep (diffuse -> glass -> glass -> light)
+// became a firefly of weight 1. With 1/2, fewer paths die in the first bounces and a caustic
+// found deep counts half (BENCHMARKS.md, section 6, has the figures: 1.5x the efficiency on
+// book 3's Cornell box). Roulette starts after two events in a scene with emitters (closed
+// rooms, long paths: on book 3's Cornell box, 1.26x the efficiency of starting after five) and
+// after five in a scene lit by the sky alone (paths escape soon; starting after three cost the
+// cover scene 5 % of its efficiency).
+inline constexpr float roulette_weight = 0.5f;
 inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 : 2; }
 
 // The material at a path vertex, as the estimators ask it: a built-in material through the
@@ -272,7 +279,7 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
         last_pdf = s.pdf;
 
         if (E == path_estimator::nee && depth >= roulette_start) {
-            const float q = max_component(throughput);
+            const float q = max_component(throughput) * (1.0f / roulette_weight);
             if (q < 1.0f) {
                 if (!(ps.get1d(sample_dimension::bounce(depth) + sample_dimension::roulette) < q)) return radiance;
                 throughput *= 1.0f / q;
