@@ -75,15 +75,28 @@ void check_mean(const image& img, double expected, const std::string& what) {
     CHECK(std::fabs(s.mean - expected) <= 4.5 * s.standard_error + 1e-4 * expected);
 }
 
+// A Lambertian floor (y = 0, albedo A) under a sphere light of radius r and radiance Le centred at
+// height d above the origin: the point right below the light has radiance A Le (r/d)^2.
+struct lit_floor {
+    hittable_list world;
+    double expected; // the radiance of the floor at the origin
+};
+
+lit_floor make_floor_under_sphere_light() {
+    const double A = 0.6, Le = 5.0, r = 0.5, d = 3.0;
+    lit_floor f{{}, A * Le * (r / d) * (r / d)};
+    f.world.add(make_shared<quad>(point3(-100, 0, -100), vec3(0, 0, 200), vec3(200, 0, 0),
+                                  make_shared<lambertian>(color(A, A, A))));
+    f.world.add(make_shared<sphere>(point3(0, d, 0), r, make_shared<diffuse_light>(color(Le, Le, Le))));
+    return f;
+}
+
 } // namespace
 
 TEST_CASE("sphere light over a Lambertian floor: A Le (r/d)^2 right below, every estimator and sampler") {
-    const double A = 0.6, Le = 5.0, r = 0.5, d = 3.0;
-    hittable_list world;
-    world.add(make_shared<quad>(point3(-100, 0, -100), vec3(0, 0, 200), vec3(200, 0, 0),
-                                make_shared<lambertian>(color(A, A, A))));
-    world.add(make_shared<sphere>(point3(0, d, 0), r, make_shared<diffuse_light>(color(Le, Le, Le))));
-    const double expected = A * Le * (r / d) * (r / d);
+    const lit_floor scene = make_floor_under_sphere_light();
+    const hittable_list& world = scene.world;
+    const double expected = scene.expected;
     for (path_estimator e : all_estimators)
         for (sampler_kind k : {sampler_kind::independent, sampler_kind::stratified, sampler_kind::sobol}) {
             const std::string what = std::string(estimator_name(e)) + ", " + sampler_name(k);
@@ -98,12 +111,9 @@ TEST_CASE("sphere light over a Lambertian floor: A Le (r/d)^2 right below, every
 // point rather than from where it starts met the light before its sampled point. nee lost all of
 // the light's direct light here (path_tracer.h, shadow_ray).
 TEST_CASE("sphere light over a Lambertian floor seen from a thousand units away: A Le (r/d)^2") {
-    const double A = 0.6, Le = 5.0, r = 0.5, d = 3.0;
-    hittable_list world;
-    world.add(make_shared<quad>(point3(-100, 0, -100), vec3(0, 0, 200), vec3(200, 0, 0),
-                                make_shared<lambertian>(color(A, A, A))));
-    world.add(make_shared<sphere>(point3(0, d, 0), r, make_shared<diffuse_light>(color(Le, Le, Le))));
-    const double expected = A * Le * (r / d) * (r / d);
+    const lit_floor scene = make_floor_under_sphere_light();
+    const hittable_list& world = scene.world;
+    const double expected = scene.expected;
     for (path_estimator e : all_estimators) {
         camera cam = pinpoint_camera(point3(600, 800, 0), point3(0, 0, 0), vec3(0, 1, 0), 24, 256, e);
         check_mean(test::render_checked(cam, world).img, expected, estimator_name(e));

@@ -85,7 +85,7 @@ inline bool is_black(const vec3f& c) { return !(c.x > 0 || c.y > 0 || c.z > 0); 
 // first version here used 1: survivors then carry the full weight of a camera ray, and in a
 // closed room a caustic reached three to nine bounces deep (diffuse -> glass -> glass -> light)
 // became a firefly of weight 1. With 1/2, fewer paths die in the first bounces and a caustic
-// found deep counts half (BENCHMARKS.md, section 6, has the figures: 1.5x the efficiency on
+// found deep counts half (BENCHMARKS.md, section 8, has the figures: 1.55x the efficiency on
 // book 3's Cornell box). Roulette starts after two events in a scene with emitters (closed
 // rooms, long paths: on book 3's Cornell box, 1.26x the efficiency of starting after five) and
 // after five in a scene lit by the sky alone (paths escape soon; starting after three cost the
