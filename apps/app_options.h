@@ -99,6 +99,7 @@ struct options {
     std::optional<bool> cull_back_faces; // --bfc on|off (apps that render XML scenes)
     std::optional<rt::path_estimator> estimator; // --estimator nee|bsdf|mixture
     std::optional<rt::sampler_kind> sampler;     // --sampler independent|stratified|sobol
+    std::optional<double> caustic_paths;         // --caustic-paths X
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
     // (rtweekend/io/slice_file.h) for `merge`.
@@ -122,6 +123,7 @@ struct options {
         if (seed) cam.seed = *seed;
         if (estimator) cam.estimator = *estimator;
         if (sampler) cam.sampler = *sampler;
+        if (caustic_paths) cam.caustic_paths = *caustic_paths;
         cam.quiet = quiet;
         // Ctrl-C during the render: the image so far (see the top).
         catch_interrupts();
@@ -290,6 +292,7 @@ inline options parse_arguments(int argc, char** argv, const description& d) {
         else if (arg == "--threads") o.threads = int(integer(0, 1024));
         else if (arg == "--seed") o.seed = uint64_t(integer(0, INT64_MAX));
         else if (arg == "--adaptive") o.adaptive = detail::real_value(arg, next(), 0, 1e6);
+        else if (arg == "--caustic-paths") o.caustic_paths = detail::real_value(arg, next(), 0, 1024);
         else if (arg == "--estimator") {
             std::string v = next();
             rt::path_estimator e;

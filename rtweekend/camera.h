@@ -73,6 +73,9 @@ class camera {
     // Where each sample's random numbers come from (engine/sampler.h): sobol (Owen-scrambled,
     // blue-noise ordered; the default), stratified (jittered) or independent (plain random).
     sampler_kind sampler = sampler_kind::sobol;
+    // With nee and uniform sampling: light paths per pixel per sample that find caustics from the
+    // lights (engine/caustic_paths.h); 0 leaves them to the camera paths.
+    double caustic_paths = 1;
     // Set *stop to true to end the render early with the samples taken so far
     // (render_settings::stop); the flag belongs to the caller and must outlive the render.
     const std::atomic<bool>* stop = nullptr;
@@ -118,6 +121,7 @@ class camera {
         s.adaptive_min_samples = adaptive_min_samples;
         s.estimator = estimator;
         s.sampler = sampler;
+        s.caustic_paths = caustic_paths;
         s.stop = stop;
         s.check("camera");
         return s;

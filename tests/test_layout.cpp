@@ -44,7 +44,8 @@ const std::vector<std::vector<std::string>> ladder = {
      "engine/surface_coordinates.h"},
     // 6. rendering: settings, the scheduler, the integrators, writing images
     {"measure/adaptive.h", "engine/render_settings.h", "engine/scheduler.h", "engine/camera_frame.h",
-     "engine/environment.h", "engine/user_material.h", "engine/path_tracer.h", "engine/whitted.h",
+     "engine/environment.h", "engine/user_material.h", "engine/caustic_paths.h", "engine/path_tracer.h",
+     "engine/whitted.h",
      "io/image_write.h", "io/exr.h"},
     // 7. the book's camera, over the path tracer
     {"camera.h"},

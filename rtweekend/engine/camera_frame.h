@@ -59,6 +59,48 @@ struct camera_frame {
         if (with_time) r.time = ps.get1d(sample_dimension::camera_time);
         return r;
     }
+    // The other way round, for paths that start at the lights (caustic_paths.h): where the camera
+    // sees the point x (relative to `position`) from the lens point `lens` (relative to
+    // `position`; zero for a pinhole). Fills the unit direction from the lens to x, the distance,
+    // the image position in pixels (as generate() takes it) and the importance factor
+    //   h^2 / (A_pixel cos^3 theta d^2),
+    // with h the distance from the lens to the plane of pixel centres, A_pixel a pixel's area on
+    // that plane, theta the angle between the direction and the plane's normal and d the distance:
+    // a pixel's value is the mean radiance over the uniform points of its square on that plane,
+    // and a patch dA of a surface at x facing the lens at angle theta_x covers
+    // h^2 cos theta_x dA / (cos^3 theta d^2) of the plane (pbrt, 4th ed., 5.4.2, for a pinhole;
+    // from each lens point alike). The caller multiplies in cos theta_x. False when x is behind
+    // the lens or outside the image.
+    struct connection {
+        vec3f dir;
+        float distance = 0;
+        float px = 0, py = 0;
+        float importance = 0;
+    };
+    bool connect(const vec3f& x, const vec3f& lens, connection& c) const {
+        const vec3f across = cross(pixel_delta_u, pixel_delta_v);
+        const float pixel_area = length(across);
+        if (!(pixel_area > 0)) return false;
+        vec3f normal = across / pixel_area;
+        float h = dot(normal, pixel00 - lens);
+        if (h < 0) {
+            normal = -normal;
+            h = -h;
+        }
+        const vec3f to = x - lens;
+        const float d2 = length_squared(to);
+        if (!(d2 > 0) || !(h > 0)) return false;
+        c.distance = std::sqrt(d2);
+        c.dir = to / c.distance;
+        const float cos_theta = dot(normal, c.dir);
+        if (!(cos_theta > 0)) return false;
+        const vec3f on_plane = lens + (h / cos_theta) * c.dir - pixel00;
+        c.px = dot(on_plane, pixel_delta_u) / length_squared(pixel_delta_u) + 0.5f;
+        c.py = dot(on_plane, pixel_delta_v) / length_squared(pixel_delta_v) + 0.5f;
+        if (!(c.px >= 0 && c.px < float(width) && c.py >= 0 && c.py < float(height))) return false;
+        c.importance = h * h / (pixel_area * cos_theta * cos_theta * cos_theta * d2);
+        return std::isfinite(c.importance);
+    }
     // The same with every number from `rng`, in the order above.
     ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng, bool with_time = false) const {
         const sampler_plan independent;

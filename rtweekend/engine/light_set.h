@@ -104,6 +104,15 @@ class light_set {
     template <class Uniform>
     bool sample_point(const vec3f& p, Uniform& u, light_choice& s) const { return sample_from(point_, p, u, s); }
 
+    // A light chosen in proportion to power, as sample() chooses (u uniform in [0, 1)), and the
+    // probability it had; none when there is no light.
+    uint32_t pick(float u, float& pmf) const {
+        if (all_.empty()) return none;
+        const uint32_t slot = all_.select.sample(u);
+        pmf = all_.select.pmf(slot);
+        return all_.members[slot];
+    }
+
     // The density sample() gives the direction from p to the point y (normal ny) of area light l,
     // selection included.
     float pdf(uint32_t l, const vec3f& p, const vec3f& y, const vec3f& ny) const {

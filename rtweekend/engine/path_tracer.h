@@ -10,6 +10,7 @@
 
 #include "../hittable.h"
 #include "camera_frame.h"
+#include "caustic_paths.h"
 #include "compiled_scene.h"
 #include "environment.h"
 #include "light_sampling.h"
@@ -23,6 +24,7 @@
 #include "surface_coordinates.h"
 #include "user_material.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <limits>
@@ -43,20 +45,6 @@ render_result path_trace(const hittable& world, const camera_frame& frame, const
 
 namespace detail {
 
-// Where a ray leaving the surface at `hit` in direction wi starts: pushed off the surface on the
-// side wi points to. A scattering point inside a volume (in_volume) lies on no surface, so it has
-// nothing to escape from and the ray starts at the point itself (see trace_path).
-inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax, bool in_volume = false) {
-    const vec3f side = dot(wi, hit.normal) >= 0 ? hit.normal : -hit.normal;
-    ray3f r;
-    r.origin = in_volume ? hit.p : offset_ray_origin(hit.p, side) + hit.offset * side;
-    r.dir = wi;
-    r.tmin = 0;
-    r.tmax = tmax;
-    r.time = hit.time; // the path's moment: shadow and continuation rays see the scene as it was
-    return r;
-}
-
 // The shadow ray from `hit` to a light's sampled point y (direction wi from hit.p). Both ends are
 // pushed off their surfaces as spawned rays are (ray_offset.h): it starts where a ray leaving
 // towards y starts (spawn_ray) and ends short of y pushed off the light towards that start (an
@@ -75,8 +63,6 @@ inline ray3f shadow_ray(const surface_hit& hit, const light_choice& lc, bool in_
     r.tmax = distance * (1.0f - 1e-4f);
     return r;
 }
-
-inline bool is_black(const vec3f& c) { return !(c.x > 0 || c.y > 0 || c.z > 0); }
 
 // Russian roulette (nee only): past a number of scattering events, a path whose throughput t
 // (its largest channel) has fallen below roulette_weight goes on with probability
@@ -154,9 +140,11 @@ struct vertex_material {
 // One path from the camera, estimated with E: the radiance it carries. Materials see the shading
 // normal (a smooth mesh's interpolated one, folded as vertex_material says; else the geometric
 // normal). Each decision draws from its own dimension of the sampler (sampler.h).
+// With caustics_traced, the paths light tracing takes (caustic_paths.h) are left out here: camera ->
+// x (its non-delta lobe sampled) -> one or more delta vertices -> a light.
 template <path_estimator E, bool UserMaterials>
 vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pixel_sampler& ps,
-                 uint64_t& rays) {
+                 uint64_t& rays, bool caustics_traced = false) {
     const light_set& lights = scene.lights;
     const int roulette_start = roulette_depth(lights);
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
@@ -169,6 +157,9 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
     bool count_emission_fully = true;
     vec3f last_p;
     float last_pdf = 0;
+    // Where the path stands in the pattern light tracing takes: none, at x (the camera's first
+    // vertex, which sampled its non-delta lobe), or past one or more delta vertices after x.
+    enum class caustic_state : uint8_t { none, at_x, past_delta } caustic = caustic_state::none;
     for (int depth = 0; depth < max_depth; ++depth) {
         ++rays;
         if (!scene.intersect(r, hit))
@@ -197,6 +188,11 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
                     const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
                     weight = power_heuristic(last_pdf, lights.pdf(l, last_p, hit.p, outward));
                 }
+            }
+            if (caustic == caustic_state::past_delta) {
+                // Light tracing's path, unless the light is one it does not start from.
+                const uint32_t l = lights.light_at(hit.kind, hit.index);
+                if (l != light_set::none && lights.lights[l].texture == UINT32_MAX) weight = 0;
             }
             radiance += throughput * le * weight;
         }
@@ -274,6 +270,12 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             return radiance;
         }
         throughput *= s.value;
+        if (caustics_traced) {
+            const bool plain = caustic_vertex(hit, m); // caustics_traced: no user code in the scene
+            if (depth == 0) caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
+            else if (caustic != caustic_state::none)
+                caustic = plain && s.is_delta() ? caustic_state::past_delta : caustic_state::none;
+        }
         count_emission_fully = E != path_estimator::nee || s.is_delta();
         last_p = hit.p;
         last_pdf = s.pdf;
@@ -306,6 +308,30 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     const bool user_code = scene.calls_user_code();
     const bool with_time = scene.uses_time();
     const sampler_plan plan(settings.sampler, settings.seed, spp);
+    // Caustics by light tracing (caustic_paths.h): nee with uniform sampling, in a scene that has them.
+    const bool caustics = settings.estimator == path_estimator::nee && settings.caustic_paths > 0 &&
+                          settings.adaptive_error == 0 && traces_caustics(scene);
+    if (caustics) {
+        caustic_splats splats(scene, frame, max_depth, settings.seed,
+                              settings.caustic_paths * double(frame.width) * double(frame.height));
+        // The pilot: which pixels light paths reach (caustic_paths.h).
+        const size_t pixels = size_t(frame.width) * size_t(frame.height);
+        std::vector<std::atomic<uint8_t>> reached(pixels);
+        detail::run_jobs(detail::render_threads(settings, splats.pilot_jobs()), splats.pilot_jobs(),
+                             [&](int job, detail::sample_totals& mine) { splats.run_pilot(job, reached, mine); });
+        std::vector<uint8_t> taken(pixels);
+        for (size_t i = 0; i < pixels; ++i) taken[i] = reached[i].load(std::memory_order_relaxed);
+        splats.take_pixels(std::move(taken));
+        return render_samples_with_splats(
+            frame.width, frame.height, settings,
+            [&](int x, int y, int s, pcg32& rng, uint64_t& rays) {
+                pixel_sampler ps(plan, x, y, s, rng);
+                ray3f r = frame.sample_ray(x, y, spp, ps, with_time);
+                return detail::trace_path<path_estimator::nee, false>(scene, env, r, max_depth, ps, rays,
+                                                                      splats.takes(x, y));
+            },
+            splats, start);
+    }
     auto render_with = [&](auto estimator) {
         constexpr path_estimator E = decltype(estimator)::value;
         return render_samples(

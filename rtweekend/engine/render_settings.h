@@ -83,6 +83,9 @@ struct render_settings {
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
     path_estimator estimator = path_estimator::nee; // the path tracer's
+    // Caustics traced from the lights (engine/caustic_paths.h), with nee and uniform sampling: light
+    // paths per pixel per sample; 0 leaves caustics to the camera paths alone.
+    double caustic_paths = 1;
     sampler_kind sampler = sampler_kind::sobol;      // where a sample's numbers come from (sampler.h)
     // The samples this render takes of every pixel: [first_sample, end_sample), end_sample 0 meaning
     // samples_per_pixel. Sample s is the same sample in any range (its numbers depend on (seed,
@@ -111,6 +114,9 @@ struct render_settings {
         require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
         require(std::isfinite(adaptive_error) && adaptive_error >= 0,
                 "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
+        require(std::isfinite(caustic_paths) && caustic_paths >= 0 && caustic_paths <= 1024,
+                "caustic_paths must lie in [0, 1024] (light paths per pixel per sample), got " +
+                    std::to_string(caustic_paths));
         require(adaptive_min_samples >= 2, "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
                                                std::to_string(adaptive_min_samples));
         const int end = sample_end();

@@ -97,6 +97,17 @@ template <class SampleFn>
 render_result render_samples(int width, int height, const render_settings& settings, SampleFn&& sample,
                              std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
 
+// The same, plus work that adds to any pixel rather than to its own: paths traced from the lights
+// (caustic_paths.h). For every sample index s of the range, `splats` runs
+// splats.jobs_per_sample() jobs, splats.run(s, job, add, totals), which call add(x, y, value);
+// each pixel's values are added to its sum as one of its samples would be, so a pixel's mean is
+// its own samples' plus the splats of the same sample indices, over its sample count. Uniform
+// sampling only (adaptive sampling decides counts per pixel, which splats cannot follow).
+template <class SampleFn, class Splats>
+render_result render_samples_with_splats(int width, int height, const render_settings& settings, SampleFn&& sample,
+                                         const Splats& splats,
+                                         std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
+
 // One-line summary of a render's statistics, as printed at the end of a render.
 std::string stats_line(const render_stats& s);
 
@@ -398,9 +409,25 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
 // The passes wait for each other (a pass must not start on a pixel whose previous pass is still
 // running, as both would write its sums); a pass costs as much as all before it, so the waits at
 // their ends add up to about twice the last pass's.
-template <class SampleFn>
+// No splats: the scheduler's plain form.
+struct no_splats {
+    int jobs_per_sample() const { return 0; }
+    template <class Add>
+    void run(int, int, Add&&, sample_totals&) const {}
+};
+
+// Splats of a pass, in fixed point (fixed_point.h), added from any thread: integer additions in
+// any order give the same sums, so the image stays the same at any thread count. Each splat is
+// clamped to splat_limit(spp), 1/64 of a sample's share: the sums of 64 spp maximal splats fit.
+struct splat_sums {
+    std::vector<std::atomic<int64_t>> rgb;
+    explicit splat_sums(size_t pixels) : rgb(pixels * 3) {}
+    static int64_t splat_limit(int spp) { return sample_limit(int64_t(spp) * 64); }
+};
+
+template <class SampleFn, class Splats = no_splats>
 render_result run_tiles(int w, int h, const render_settings& settings, SampleFn& sample,
-                        std::chrono::steady_clock::time_point start) {
+                        std::chrono::steady_clock::time_point start, const Splats& splats = Splats{}) {
     constexpr int tile = 16;
     const int spp = settings.samples_per_pixel;
     const int first_sample = settings.first_sample, end_sample = settings.sample_end();
@@ -424,6 +451,15 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
     const int64_t total = int64_t(my_pixels) * (end_sample - first_sample);
     std::atomic<int64_t> done{0};
     sample_totals totals;
+    // Splats: this pass's, and those of the passes that completed ([first_sample, splat_end)).
+    const int splat_jobs = splats.jobs_per_sample();
+    std::vector<int64_t> kept_splats(splat_jobs > 0 ? size_t(w) * size_t(h) * 3 : 0, 0);
+    splat_sums pass_splats(splat_jobs > 0 ? size_t(w) * size_t(h) : 0);
+    int splat_end = first_sample;
+    const int64_t splat_limit = splat_sums::splat_limit(spp);
+    auto owns_pixel = [&](int x, int y) {
+        return !by_tiles || ((y / tile) * tiles_x + x / tile) % tile_step == tile_first;
+    };
     if (settings.share) settings.share->ready();
     for (int first = first_sample; first < end_sample && !stop_requested(settings);) {
         // This pass: samples [first, last), 1 sample, then 1, 2, 4 ... counted from the range's start.
@@ -453,9 +489,47 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
             progress.show(done += int64_t(x1 - x0) * (y1 - y0) * (last - first), total);
         });
         totals.add(t);
+        if (splat_jobs > 0 && !stop_requested(settings)) {
+            sample_totals st = run_jobs(threads, (last - first) * splat_jobs, [&](int job, sample_totals& mine) {
+                if (stop_requested(settings)) return;
+                auto add = [&](int x, int y, const vec3f& value) {
+                    if (x < 0 || x >= w || y < 0 || y >= h || !owns_pixel(x, y) || !is_finite(value)) return;
+                    const size_t i = (size_t(y) * size_t(w) + size_t(x)) * 3;
+                    bool clamped = false;
+                    pass_splats.rgb[i].fetch_add(to_fixed(value.x, splat_limit, clamped), std::memory_order_relaxed);
+                    pass_splats.rgb[i + 1].fetch_add(to_fixed(value.y, splat_limit, clamped), std::memory_order_relaxed);
+                    pass_splats.rgb[i + 2].fetch_add(to_fixed(value.z, splat_limit, clamped), std::memory_order_relaxed);
+                    if (clamped) ++mine.saturated;
+                };
+                splats.run(first + job / splat_jobs, job % splat_jobs, add, mine);
+            });
+            totals.rays += st.rays;
+            totals.saturated += st.saturated;
+            // A pass's splats count only when all of them were traced.
+            if (!stop_requested(settings)) {
+                for (size_t i = 0; i < kept_splats.size(); ++i)
+                    kept_splats[i] += pass_splats.rgb[i].exchange(0, std::memory_order_relaxed);
+                splat_end = last;
+            }
+        }
         first = last;
     }
     progress.finish();
+
+    // The splats join the sums: exactly, for every pixel that took the samples [first_sample,
+    // splat_end); in proportion to its count for one that took more or fewer (a render stopped early).
+    if (splat_end > first_sample) {
+        const int64_t splat_samples = splat_end - first_sample;
+        for (size_t i = 0; i < sums.pixel_count(); ++i) {
+            const int64_t n = sums.counts[i];
+            if (n == 0) continue;
+            for (size_t k = 0; k < 3; ++k) {
+                int64_t add = kept_splats[i * 3 + k];
+                if (n != splat_samples) add = int64_t(std::llround(double(add) * double(n) / double(splat_samples)));
+                if (!add_fixed(sums.rgb[i * 3 + k], add, sums.rgb[i * 3 + k])) ++totals.saturated;
+            }
+        }
+    }
 
     render_result result;
     result.img = mean_image(sums);
@@ -473,6 +547,14 @@ render_result render_samples(int width, int height, const render_settings& setti
     settings.check();
     if (settings.adaptive_error > 0) return detail::run_adaptive(width, height, settings, sample, start);
     return detail::run_tiles(width, height, settings, sample, start);
+}
+
+template <class SampleFn, class Splats>
+render_result render_samples_with_splats(int width, int height, const render_settings& settings, SampleFn&& sample,
+                                         const Splats& splats, std::chrono::steady_clock::time_point start) {
+    settings.check();
+    if (settings.adaptive_error > 0) throw scene_error("splats need uniform sampling (adaptive sampling is on)");
+    return detail::run_tiles(width, height, settings, sample, start, splats);
 }
 
 inline std::string stats_line(const render_stats& s) {

@@ -3,6 +3,7 @@
 
 #include "../hittable.h"
 #include "leaf_query.h"
+#include "ray_offset.h"
 #include "vec3f.h"
 
 #include <cstdint>
@@ -30,5 +31,23 @@ struct surface_hit {
     const hittable* user_shape = nullptr;
     hit_record user_record;
 };
+
+namespace detail {
+
+// Where a ray leaving the surface at `hit` in direction wi starts: pushed off the surface on the
+// side wi points to. A scattering point inside a volume (in_volume) lies on no surface, so it has
+// nothing to escape from and the ray starts at the point itself (see trace_path).
+inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax, bool in_volume = false) {
+    const vec3f side = dot(wi, hit.normal) >= 0 ? hit.normal : -hit.normal;
+    ray3f r;
+    r.origin = in_volume ? hit.p : offset_ray_origin(hit.p, side) + hit.offset * side;
+    r.dir = wi;
+    r.tmin = 0;
+    r.tmax = tmax;
+    r.time = hit.time; // the path's moment: shadow and continuation rays see the scene as it was
+    return r;
+}
+
+} // namespace detail
 
 } // namespace rt

@@ -55,4 +55,9 @@ struct ray3f {
     vec3f at(float t) const { return origin + t * dir; }
 };
 
+namespace detail {
+// Whether no channel of c is positive (black, or NaN).
+inline bool is_black(const vec3f& c) { return !(c.x > 0 || c.y > 0 || c.z > 0); }
+} // namespace detail
+
 } // namespace rt

@@ -1,0 +1,309 @@
+#pragma once
+// Caustic paths traced from the lights: the part of the image that next-event estimation cannot
+// reach, found the other way round.
+//
+//   if (traces_caustics(scene)) ... trace_caustic_path(scene, frame, max_depth, rng, splat, rays);
+//
+// A caustic is light that reaches a diffuse or glossy surface through glass or mirrors (light ->
+// one or more delta lobes -> surface). Next-event estimation cannot find it: the shadow ray stops
+// at the glass. The path tracer finds it only when a material-sampled ray happens to leave the
+// surface along the one chain of delta directions that ends on the light, which for a small
+// light is rare and bright: on book 3's Cornell box, the caustic under the glass sphere held 78 %
+// of the `nee` image's squared error at 64 spp (BENCHMARKS.md, section 6).
+//
+// Light tracing turns this round (Veach 1997, ch. 10, the bidirectional strategy with one camera
+// vertex; Arvo's backward ray tracing): a path starts at a point of a light, follows delta lobes,
+// and where it meets a surface with a density after at least one of them, it is joined to the
+// camera by a shadow ray and adds to the pixel it lands in (a splat). The light is focused by the
+// glass just as the path is, so every path that reaches the caustic contributes.
+//
+// The work is split between the two by path, with no overlap and no gap (a partition rather than
+// a weighting): light tracing takes exactly the paths
+//     camera -> x (seen directly, sampled by its non-delta part) -> k >= 1 delta vertices -> a light
+// and the path tracer leaves these out (path_tracer.h, caustic_state). Both sides stop at the
+// same things: user-written shapes and materials, volumes, smooth-shaded vertices (their folded
+// lobes, path_tracer.h, are not symmetric under reversal) and textured lights; k is at most
+// max_depth - 2, as the path tracer's ray count allows.
+//
+// Reversing a delta chain. Mirrors and the exact Fresnel dielectric choose reflection and
+// refraction by the same probability from either end (reflection angles are equal; the exact
+// Fresnel reflectance is the same on both sides of a refraction). The book's glass uses Schlick's
+// approximation of the cosine on the side the path tracer arrives from, which differs across a
+// refraction; a light path refracting there is weighed by the ratio of the path tracer's
+// probability to its own, so both estimate the same image: the book's.
+//
+// Throughput. A light of radiance Le and area A emits its power from a uniform point, in a
+// cosine-distributed direction: each path carries Le pi A / P(light) (twice that for a two-sided
+// light, which picks a side); a point light of intensity I, uniform directions, I 4 pi / P(light).
+// At the surface point x, met from direction wi, joined to the lens along wo at distance d:
+//     splat = throughput * f(wo, wi) |cos_s(wi)| / |cos_g(wi)| * |cos_g(wo)| * importance
+// (importance: camera_frame::connect; cos_s against the shading normal, which eval includes;
+// cos_g against the geometric one, the measure the path arrived in).
+
+#include "bsdf.h"
+#include "camera_frame.h"
+#include "compiled_scene.h"
+#include "light_set.h"
+#include "rng.h"
+#include "sampling.h"
+#include "surface_coordinates.h"
+#include "surface_hit.h"
+#include "vec3f.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace rt {
+
+// Whether some lobe of m is a delta lobe (glass, a mirror, a smooth coat).
+inline bool has_delta_lobe(const compiled_material& m) {
+    switch (m.kind) {
+    case material_kind::dielectric:
+    case material_kind::fresnel_dielectric:
+    case material_kind::conductor:
+    case material_kind::plastic: return true;
+    case material_kind::metal: return !m.is_glossy_metal();
+    default: return false;
+    }
+}
+
+// Whether light tracing has caustics to find in `scene`: an untextured light, and a material with
+// a delta lobe, and no user-written code (which light paths cannot follow).
+inline bool traces_caustics(const compiled_scene& scene) {
+    if (scene.calls_user_code()) return false;
+    bool light = false;
+    for (const auto& l : scene.lights.lights) light = light || l.texture == UINT32_MAX;
+    if (!light) return false;
+    for (const compiled_material& m : scene.materials)
+        if (has_delta_lobe(m)) return true;
+    return false;
+}
+
+// A vertex that a caustic path may pass: a built-in surface (no user shape, no volume), shaded with
+// its geometric normal.
+inline bool caustic_vertex(const surface_hit& hit, const compiled_material& m) {
+    return !hit.user_shape && m.kind != material_kind::user && m.kind != material_kind::isotropic &&
+           hit.shading_normal.x == hit.normal.x && hit.shading_normal.y == hit.normal.y &&
+           hit.shading_normal.z == hit.normal.z;
+}
+
+// One light path (the numbers from rng): splat(x, y, value) for each pixel it adds to; rays counts
+// the rays traced.
+template <class Splat>
+void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth, pcg32& rng,
+                        Splat&& splat, uint64_t& rays);
+
+// The light paths of a render, as the scheduler's splat work (scheduler.h,
+// render_samples_with_splats): for each sample index, `paths` light paths (rounded to a whole
+// number, at least 1), each splatting 1/paths of its value, so that a pixel's mean is its camera
+// samples' plus the mean of the light paths' splats. Path k of sample index s draws from its own
+// generator, so the image is the same at any thread count.
+//
+// Which pixels: light paths reach a pixel only as often as its part of the caustic is large beside
+// the light's reach. A camera that sees a small part of the scene (a narrow field of view, a close
+// look at one spot) would get few, heavy splats, where the camera paths did better. So a pilot
+// set of light paths (one per pixel, numbers of their own) is traced first, and light tracing
+// takes the caustics of the pixels it reached (caustic_pixels); the camera paths keep the others'.
+// The split is fixed before the render, so each pixel is estimated by one of the two, unbiased.
+class caustic_splats {
+  public:
+    static constexpr int64_t paths_per_job = 4096;
+    static constexpr int64_t pilot_per_pixel = 4;
+
+    caustic_splats(const compiled_scene& scene, const camera_frame& frame, int max_depth, uint64_t seed, double paths)
+        : scene_(scene), frame_(frame), max_depth_(max_depth), seed_(mix64(seed ^ 0x6c1d5e0b7f4a2c93ULL)),
+          paths_(std::max<int64_t>(1, std::llround(std::min(paths, 1e15)))) {}
+
+    int jobs_per_sample() const { return int((paths_ + paths_per_job - 1) / paths_per_job); }
+    int64_t pilot_paths() const { return pilot_per_pixel * int64_t(frame_.width) * int64_t(frame_.height); }
+    int pilot_jobs() const { return int((pilot_paths() + paths_per_job - 1) / paths_per_job); }
+
+    // Pilot job `job`: marks the pixels its light paths reach (reached: one flag per pixel).
+    template <class Flags, class Totals>
+    void run_pilot(int job, Flags& reached, Totals& totals) const {
+        const int64_t end = std::min(pilot_paths(), int64_t(job + 1) * paths_per_job);
+        for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
+            pcg32 rng = sample_rng(seed_ ^ 0x2f8a3c51e6b90d47ULL, uint64_t(k), 0);
+            trace_caustic_path(scene_, frame_, max_depth_, rng,
+                               [&](int x, int y, const vec3f&) {
+                                   reached[size_t(y) * size_t(frame_.width) + size_t(x)].store(1, std::memory_order_relaxed);
+                               },
+                               totals.rays);
+        }
+    }
+    // Light tracing takes the caustics of these pixels (1) only; set once, before the render.
+    void take_pixels(std::vector<uint8_t> pixels) { pixels_ = std::move(pixels); }
+    bool takes(int x, int y) const { return pixels_[size_t(y) * size_t(frame_.width) + size_t(x)] != 0; }
+
+    template <class Add, class Totals>
+    void run(int s, int job, Add&& add, Totals& totals) const {
+        const float share = float(1.0 / double(paths_));
+        const int64_t end = std::min(paths_, int64_t(job + 1) * paths_per_job);
+        for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
+            pcg32 rng = sample_rng(seed_, uint64_t(k), uint64_t(s));
+            trace_caustic_path(scene_, frame_, max_depth_, rng,
+                               [&](int x, int y, const vec3f& value) {
+                                   if (takes(x, y)) add(x, y, value * share);
+                               },
+                               totals.rays);
+        }
+    }
+
+  private:
+    const compiled_scene& scene_;
+    const camera_frame& frame_;
+    int max_depth_;
+    uint64_t seed_;
+    int64_t paths_;
+    std::vector<uint8_t> pixels_;
+};
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+// The probability the path tracer would have chosen a refraction, seen from the side the light
+// path leaves to, over the probability the light path chose it with: 1 but for the book's Schlick
+// glass (see the top). n: the unit normal; wo: back along the arriving light path, on the side
+// `front` says; s: the refraction drawn.
+inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, const vec3f& wo, bool front,
+                                    const material_sample& s) {
+    if (m.kind != material_kind::dielectric || s.sampled != delta_transmission) return 1.0f;
+    auto transmitted = [&](float cos_theta, bool front_face) {
+        const float ri = front_face ? 1.0f / m.refraction_index : m.refraction_index;
+        cos_theta = std::fmin(cos_theta, 1.0f);
+        const float sin_theta = std::sqrt(std::fmax(0.0f, 1.0f - cos_theta * cos_theta));
+        if (ri * sin_theta > 1.0f) return 0.0f;
+        return 1.0f - schlick_reflectance(cos_theta, ri);
+    };
+    const float mine = transmitted(std::fabs(dot(wo, n)), front);
+    const float theirs = transmitted(std::fabs(dot(s.wi, n)), !front);
+    return mine > 0 ? theirs / mine : 0.0f;
+}
+
+// Where a light path starts: a point of light l (chosen with probability pmf), a direction, and
+// the throughput the path carries. False when l is textured (left to the path tracer) or
+// degenerate.
+inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, vec3f& throughput) {
+    if (l.texture != UINT32_MAX || !(pmf > 0)) return false;
+    const auto [u1, u2] = draw_2d(rng);
+    if (l.kind == light_kind::point) {
+        r.origin = l.p0;
+        r.dir = sample_unit_sphere(u1, u2);
+        throughput = l.emission * (4.0f * pi_f / pmf);
+        return true;
+    }
+    vec3f y, n;
+    float area = 0;
+    switch (l.kind) {
+    case light_kind::sphere:
+        n = sample_unit_sphere(u1, u2);
+        y = l.p0 + l.radius * n;
+        area = 4.0f * pi_f * l.radius * l.radius;
+        break;
+    case light_kind::quad: {
+        const vec3f normal = cross(l.p1, l.p2);
+        area = length(normal);
+        n = normal / area;
+        y = l.p0 + u1 * l.p1 + u2 * l.p2;
+        break;
+    }
+    case light_kind::triangle: {
+        const vec3f normal = cross(l.p1 - l.p0, l.p2 - l.p0);
+        const float twice = length(normal);
+        area = 0.5f * twice;
+        n = normal / twice;
+        // Uniform by area: the square's lower-left half as is, the upper-right half folded onto it.
+        float b1 = u1, b2 = u2;
+        if (b1 + b2 > 1.0f) {
+            b1 = 1.0f - b1;
+            b2 = 1.0f - b2;
+        }
+        y = l.p0 + b1 * (l.p1 - l.p0) + b2 * (l.p2 - l.p0);
+        break;
+    }
+    case light_kind::point: break;
+    }
+    if (!(area > 0) || !std::isfinite(area)) return false;
+    float sides = 1.0f;
+    if (l.two_sided) {
+        sides = 2.0f;
+        if (rng.next_float() < 0.5f) n = -n;
+    }
+    const auto [v1, v2] = draw_2d(rng);
+    r.dir = sample_cosine_direction(n, v1, v2);
+    r.origin = offset_ray_origin(y, n);
+    throughput = l.emission * (sides * pi_f * area / pmf);
+    return true;
+}
+
+} // namespace detail
+
+template <class Splat>
+void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth, pcg32& rng,
+                        Splat&& splat, uint64_t& rays) {
+    float pmf = 0;
+    const uint32_t chosen = scene.lights.pick(rng.next_float(), pmf);
+    if (chosen == light_set::none) return;
+    ray3f r;
+    vec3f throughput;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, rng, r, throughput)) return;
+    r.tmin = 0;
+    r.tmax = std::numeric_limits<float>::infinity();
+    if (scene.has_motion) r.time = rng.next_float();
+    surface_hit hit;
+    compiled_material looked_up;
+    for (int delta_vertices = 0;; ++delta_vertices) {
+        ++rays;
+        if (!scene.intersect(r, hit)) return;
+        const compiled_material& stored = scene.materials[hit.material];
+        if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
+        const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
+        if (!caustic_vertex(hit, m) || m.kind == material_kind::diffuse_light) return;
+        if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+        const vec3f wi = -r.dir; // back towards the light
+
+        if (delta_vertices >= 1 && m.has_non_delta_lobe()) {
+            // Joined to the camera: a point of the lens, and a shadow ray to it.
+            vec3f lens{0, 0, 0};
+            if (frame.thin_lens) {
+                const auto [l1, l2] = draw_2d(rng);
+                const vec3f d = sample_unit_disk(l1, l2);
+                lens = d.x * frame.defocus_disk_u + d.y * frame.defocus_disk_v;
+            }
+            camera_frame::connection c;
+            if (frame.connect(hit.p, lens, c)) {
+                // The surface as the camera sees it: normals on the camera's side.
+                const vec3f wo = -c.dir;
+                surface_hit seen = hit;
+                if (dot(wo, hit.normal) < 0) {
+                    seen.normal = -hit.normal;
+                    seen.shading_normal = -hit.shading_normal;
+                    seen.front_face = !hit.front_face;
+                }
+                const vec3f f = m.eval(wo, wi, shading_point{seen.shading_normal, seen.front_face});
+                const float cos_in = std::fabs(dot(hit.normal, wi)), cos_out = std::fabs(dot(hit.normal, wo));
+                if (!detail::is_black(f) && cos_in > 0) {
+                    const vec3f value = throughput * f * (c.importance * cos_out / cos_in);
+                    ++rays;
+                    if (!detail::is_black(value) &&
+                        !scene.occluded(detail::spawn_ray(seen, wo, c.distance * (1.0f - 1e-4f))))
+                        splat(int(c.px), int(c.py), value);
+                }
+            }
+        }
+        // One more delta vertex would make the path tracer's path longer than max_depth rays.
+        if (delta_vertices + 1 > max_depth - 2) return;
+        material_sample s;
+        const shading_point sp{hit.shading_normal, hit.front_face};
+        if (!m.sample(wi, sp, rng, s) || !s.is_delta()) return;
+        throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
+        if (detail::is_black(throughput)) return;
+        r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
+    }
+}
+
+} // namespace rt
