@@ -157,7 +157,7 @@ inline bool is_xml_scene(const std::string& path) {
 inline void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
-                 "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent]\n"
+                 "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent] [--caustic-paths X]\n"
                  "          [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
@@ -174,6 +174,9 @@ inline void print_usage(const description& d, std::FILE* to) {
                  "  --sampler S  where each sample's random numbers come from: sobol (Owen-scrambled Sobol\n"
                  "               in Morton order, error spread as blue noise; default), stratified\n"
                  "               (jittered) or independent (plain random numbers)\n"
+                 "  --caustic-paths X with nee: X light paths per pixel per sample find the caustics\n"
+                 "               (light through glass or off mirrors onto a surface the camera sees) from\n"
+                 "               the lights; default 0.25, 0 = leave them to the camera paths\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp, or linear .pfm or .exr); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -193,7 +196,7 @@ inline void print_usage(const description& d, std::FILE* to) {
                      "  --integrator path\n"
                      "               render with the path tracer instead (point lights with indirect light, the\n"
                      "               diffuse reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
-                     "               --adaptive, --estimator and --sampler then apply too\n");
+                     "               --adaptive, --estimator, --sampler and --caustic-paths then apply too\n");
 }
 
 [[noreturn]] inline void usage_error(const description& d, const std::string& message) {

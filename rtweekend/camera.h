@@ -75,7 +75,7 @@ class camera {
     sampler_kind sampler = sampler_kind::sobol;
     // With nee and uniform sampling: light paths per pixel per sample that find caustics from the
     // lights (engine/caustic_paths.h); 0 leaves them to the camera paths.
-    double caustic_paths = 1;
+    double caustic_paths = 0.25;
     // Set *stop to true to end the render early with the samples taken so far
     // (render_settings::stop); the flag belongs to the caller and must outlive the render.
     const std::atomic<bool>* stop = nullptr;

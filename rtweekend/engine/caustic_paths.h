@@ -8,8 +8,9 @@
 // one or more delta lobes -> surface). Next-event estimation cannot find it: the shadow ray stops
 // at the glass. The path tracer finds it only when a material-sampled ray happens to leave the
 // surface along the one chain of delta directions that ends on the light, which for a small
-// light is rare and bright: on book 3's Cornell box, the caustic under the glass sphere held 78 %
-// of the `nee` image's squared error at 64 spp (BENCHMARKS.md, section 6).
+// light is rare and bright: on book 3's Cornell box, the caustic under the glass sphere held a
+// third of the `nee` image's squared error at 64 spp (BENCHMARKS.md, section 11). With a point
+// light it cannot find it at all: no direction hits a point.
 //
 // Light tracing turns this round (Veach 1997, ch. 10, the bidirectional strategy with one camera
 // vertex; Arvo's backward ray tracing): a path starts at a point of a light, follows delta lobes,
@@ -90,8 +91,8 @@ inline bool caustic_vertex(const surface_hit& hit, const compiled_material& m) {
            hit.shading_normal.z == hit.normal.z;
 }
 
-// One light path (the numbers from rng): splat(x, y, value) for each pixel it adds to; rays counts
-// the rays traced.
+// One light path (the numbers from rng): splat(x, y, value, from_point_light) for each pixel it adds
+// to; rays counts the rays traced.
 template <class Splat>
 void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth, pcg32& rng,
                         Splat&& splat, uint64_t& rays);
@@ -108,6 +109,8 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
 // set of light paths (one per pixel, numbers of their own) is traced first, and light tracing
 // takes the caustics of the pixels it reached (caustic_pixels); the camera paths keep the others'.
 // The split is fixed before the render, so each pixel is estimated by one of the two, unbiased.
+// A caustic of a point light goes to light tracing in every pixel: no camera path can end on a
+// point, so the camera paths never had it (without light tracing it is missing from the image).
 class caustic_splats {
   public:
     static constexpr int64_t paths_per_job = 4096;
@@ -128,7 +131,7 @@ class caustic_splats {
         for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
             pcg32 rng = sample_rng(seed_ ^ 0x2f8a3c51e6b90d47ULL, uint64_t(k), 0);
             trace_caustic_path(scene_, frame_, max_depth_, rng,
-                               [&](int x, int y, const vec3f&) {
+                               [&](int x, int y, const vec3f&, bool) {
                                    reached[size_t(y) * size_t(frame_.width) + size_t(x)].store(1, std::memory_order_relaxed);
                                },
                                totals.rays);
@@ -145,8 +148,8 @@ class caustic_splats {
         for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
             pcg32 rng = sample_rng(seed_, uint64_t(k), uint64_t(s));
             trace_caustic_path(scene_, frame_, max_depth_, rng,
-                               [&](int x, int y, const vec3f& value) {
-                                   if (takes(x, y)) add(x, y, value * share);
+                               [&](int x, int y, const vec3f& value, bool from_point_light) {
+                                   if (from_point_light || takes(x, y)) add(x, y, value * share);
                                },
                                totals.rays);
         }
@@ -251,6 +254,7 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
     ray3f r;
     vec3f throughput;
     if (!detail::start_light_path(scene.lights.lights[chosen], pmf, rng, r, throughput)) return;
+    const bool from_point_light = scene.lights.lights[chosen].is_delta();
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();
     if (scene.has_motion) r.time = rng.next_float();
@@ -291,7 +295,7 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
                     ++rays;
                     if (!detail::is_black(value) &&
                         !scene.occluded(detail::spawn_ray(seen, wo, c.distance * (1.0f - 1e-4f))))
-                        splat(int(c.px), int(c.py), value);
+                        splat(int(c.px), int(c.py), value, from_point_light);
                 }
             }
         }

@@ -85,7 +85,7 @@ struct render_settings {
     path_estimator estimator = path_estimator::nee; // the path tracer's
     // Caustics traced from the lights (engine/caustic_paths.h), with nee and uniform sampling: light
     // paths per pixel per sample; 0 leaves caustics to the camera paths alone.
-    double caustic_paths = 1;
+    double caustic_paths = 0.25;
     sampler_kind sampler = sampler_kind::sobol;      // where a sample's numbers come from (sampler.h)
     // The samples this render takes of every pixel: [first_sample, end_sample), end_sample 0 meaning
     // samples_per_pixel. Sample s is the same sample in any range (its numbers depend on (seed,
