@@ -154,6 +154,18 @@ struct compiled_material {
         return kind == material_kind::lambertian || is_glossy_metal() || has_diffuse_base() ||
                kind == material_kind::isotropic || kind == material_kind::plastic || kind == material_kind::blinn_phong;
     }
+    // Whether some lobe is a delta lobe (glass, a mirror, a smooth coat): light leaving it can
+    // form a caustic (caustic_paths.h).
+    bool has_delta_lobe() const {
+        switch (kind) {
+        case material_kind::dielectric:
+        case material_kind::fresnel_dielectric:
+        case material_kind::conductor:
+        case material_kind::plastic: return true;
+        case material_kind::metal: return !is_glossy_metal();
+        default: return false;
+        }
+    }
 
   private:
     template <class Uniform>

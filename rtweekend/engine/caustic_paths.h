@@ -59,18 +59,6 @@
 
 namespace rt {
 
-// Whether some lobe of m is a delta lobe (glass, a mirror, a smooth coat).
-inline bool has_delta_lobe(const compiled_material& m) {
-    switch (m.kind) {
-    case material_kind::dielectric:
-    case material_kind::fresnel_dielectric:
-    case material_kind::conductor:
-    case material_kind::plastic: return true;
-    case material_kind::metal: return !m.is_glossy_metal();
-    default: return false;
-    }
-}
-
 // Whether light tracing has caustics to find in `scene`: an untextured light, and a material with
 // a delta lobe, and no user-written code (which light paths cannot follow).
 inline bool traces_caustics(const compiled_scene& scene) {
@@ -79,16 +67,14 @@ inline bool traces_caustics(const compiled_scene& scene) {
     for (const auto& l : scene.lights.lights) light = light || l.texture == UINT32_MAX;
     if (!light) return false;
     for (const compiled_material& m : scene.materials)
-        if (has_delta_lobe(m)) return true;
+        if (m.has_delta_lobe()) return true;
     return false;
 }
 
 // A vertex that a caustic path may pass: a built-in surface (no user shape, no volume), shaded with
 // its geometric normal.
 inline bool caustic_vertex(const surface_hit& hit, const compiled_material& m) {
-    return !hit.user_shape && m.kind != material_kind::user && m.kind != material_kind::isotropic &&
-           hit.shading_normal.x == hit.normal.x && hit.shading_normal.y == hit.normal.y &&
-           hit.shading_normal.z == hit.normal.z;
+    return !hit.user_shape && m.kind != material_kind::user && m.kind != material_kind::isotropic && !hit.smooth_shaded();
 }
 
 // One light path (the numbers from rng): splat(x, y, value, from_point_light) for each pixel it adds
@@ -199,38 +185,26 @@ inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, ve
         throughput = l.emission * (4.0f * pi_f / pmf);
         return true;
     }
+    const float area = l.area();
+    if (!(area > 0) || !std::isfinite(area)) return false;
     vec3f y, n;
-    float area = 0;
     switch (l.kind) {
     case light_kind::sphere:
         n = sample_unit_sphere(u1, u2);
         y = l.p0 + l.radius * n;
-        area = 4.0f * pi_f * l.radius * l.radius;
         break;
-    case light_kind::quad: {
-        const vec3f normal = cross(l.p1, l.p2);
-        area = length(normal);
-        n = normal / area;
+    case light_kind::quad:
+        n = normalize(cross(l.p1, l.p2));
         y = l.p0 + u1 * l.p1 + u2 * l.p2;
         break;
-    }
     case light_kind::triangle: {
-        const vec3f normal = cross(l.p1 - l.p0, l.p2 - l.p0);
-        const float twice = length(normal);
-        area = 0.5f * twice;
-        n = normal / twice;
-        // Uniform by area: the square's lower-left half as is, the upper-right half folded onto it.
-        float b1 = u1, b2 = u2;
-        if (b1 + b2 > 1.0f) {
-            b1 = 1.0f - b1;
-            b2 = 1.0f - b2;
-        }
-        y = l.p0 + b1 * (l.p1 - l.p0) + b2 * (l.p2 - l.p0);
+        n = normalize(cross(l.p1 - l.p0, l.p2 - l.p0));
+        const barycentric b = uniform_triangle_point(u1, u2);
+        y = b.b0 * l.p0 + b.b1 * l.p1 + b.b2 * l.p2;
         break;
     }
     case light_kind::point: break;
     }
-    if (!(area > 0) || !std::isfinite(area)) return false;
     float sides = 1.0f;
     if (l.two_sided) {
         sides = 2.0f;

@@ -92,6 +92,13 @@ float area_to_solid_angle(float area_pdf, const vec3f& p, const vec3f& y, const 
 // pdf_a is, 1 when only pdf_b is; an infinite density beats a finite one; two infinite give 1/2.
 float power_heuristic(float pdf_a, float pdf_b);
 
+// A uniform point of a triangle (by area) from two uniforms, as barycentric weights of its
+// corners a, b, c (Heitz, "A Low-Distortion Map Between Triangle and Square", 2019).
+struct barycentric {
+    float b0 = 0, b1 = 0, b2 = 0;
+};
+barycentric uniform_triangle_point(float u1, float u2);
+
 // The sphere of centre c and radius r. From outside: uniform over the cone of directions it
 // subtends, y the near point where the direction meets it, pdf 1 / (cone solid angle). From inside
 // or on it: y uniform by area, pdf converted to solid angle.
@@ -322,6 +329,22 @@ inline bool sample_rectangle(const spherical_rectangle& r, const vec3f& p, const
 
 } // namespace detail
 
+inline barycentric uniform_triangle_point(float u1, float u2) {
+    // Heitz's map: the square is cut along its diagonal and each half mapped linearly onto the
+    // triangle (one coordinate halved, the other sheared), which keeps areas (uniform) with no
+    // square root and less distortion than the sqrt(u1) warp.
+    barycentric w;
+    if (u1 < u2) {
+        w.b0 = 0.5f * u1;
+        w.b1 = u2 - w.b0;
+    } else {
+        w.b1 = 0.5f * u2;
+        w.b0 = u1 - w.b1;
+    }
+    w.b2 = 1.0f - w.b0 - w.b1;
+    return w;
+}
+
 inline float area_to_solid_angle(float area_pdf, const vec3f& p, const vec3f& y, const vec3f& ny) {
     const vec3f to = y - p;
     const float d2 = length_squared(to);
@@ -444,19 +467,8 @@ inline bool sample_triangle_light(const vec3f& p, const vec3f& a, const vec3f& b
     const vec3f normal = cross(b - a, c - a);
     const float twice_area = length(normal);
     if (!(twice_area > 0)) return false;
-    // Heitz's map: the square is cut along its diagonal and each half mapped linearly onto the
-    // triangle (one coordinate halved, the other sheared), which keeps areas (uniform) with no
-    // square root and less distortion than the sqrt(u1) warp.
-    float b0, b1;
-    if (u1 < u2) {
-        b0 = 0.5f * u1;
-        b1 = u2 - b0;
-    } else {
-        b1 = 0.5f * u2;
-        b0 = u1 - b1;
-    }
-    const float b2 = 1.0f - b0 - b1;
-    return detail::finish_area_sample(p, b0 * a + b1 * b + b2 * c, normal / twice_area, 2.0f / twice_area, s);
+    const barycentric w = uniform_triangle_point(u1, u2);
+    return detail::finish_area_sample(p, w.b0 * a + w.b1 * b + w.b2 * c, normal / twice_area, 2.0f / twice_area, s);
 }
 
 inline float triangle_light_pdf(const vec3f& p, const vec3f& a, const vec3f& b, const vec3f& c, const vec3f& y,

@@ -206,8 +206,7 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             radiance += throughput * user->emitted();
             if (!user->scatter()) return radiance;
         }
-        const bool smooth = !(hit.shading_normal.x == hit.normal.x && hit.shading_normal.y == hit.normal.y &&
-                              hit.shading_normal.z == hit.normal.z);
+        const bool smooth = hit.smooth_shaded();
         const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
                                                 smooth && m.kind != material_kind::isotropic};
         const bool has_density = vm.has_density();

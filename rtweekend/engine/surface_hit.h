@@ -30,6 +30,11 @@ struct surface_hit {
     // Set when a user-written hittable was hit: its record, in world coordinates.
     const hittable* user_shape = nullptr;
     hit_record user_record;
+
+    // Whether the shading normal differs from the geometric one (a smooth mesh's hit).
+    bool smooth_shaded() const {
+        return !(shading_normal.x == normal.x && shading_normal.y == normal.y && shading_normal.z == normal.z);
+    }
 };
 
 namespace detail {
