@@ -5,6 +5,11 @@
 //     the light): the image's mean is (A/pi) I (Omega_1 + Omega_2) / area, Omega_k the solid angle
 //     the seen square subtends at the light and at its mirror image. Camera paths can never end on
 //     a point, so without light tracing the mirror's share is missing;
+//   - the power-heuristic weights between light tracing and the camera paths: the ratio of the
+//     two strategies' densities worked out by hand for a point on the camera's axis;
+//   - an area light seen in a mirror lights a Lambertian patch: the image's mean against the
+//     integral of the mirror image's irradiance, with light tracing off, seen wide (light tracing
+//     takes nearly all of the caustic) and zoomed in (both take a fair share);
 //   - the same image at one and two threads with light tracing on.
 // The estimators' agreement with it on the Cornell box is in test_lights.cpp.
 
@@ -110,6 +115,119 @@ TEST_CASE("a point light seen in a mirror lights a Lambertian patch: (A/pi) I (O
     const double without = mean_of(0, 1);
     INFO("without light tracing: " << without << ", direct light " << direct);
     CHECK(without == doctest::Approx(direct).epsilon(0.003));
+}
+
+TEST_CASE("light tracing and the camera paths weigh a caustic by the ratio of their densities") {
+    // A one-sided quad light of area A_l, the only light (chosen with probability 1); a pinhole
+    // camera of field of view theta, W x W pixels, looking along -z. At the point x on its axis at
+    // distance d, facing it, a pixel covers the patch of side 2 d tan(theta / 2) / W: the camera
+    // samples x with area density 1 / that squared per sample, light tracing the light's points
+    // with N / A_l per sample. Their ratio r = N (2 d tan(theta/2) / W)^2 / A_l; the camera paths
+    // keep 1 / (1 + r^2) of a caustic through x, light tracing r^2 / (1 + r^2) (power heuristic).
+    // A two-sided light halves the density of each side.
+    const double side_u = 0.4, side_v = 0.3, A_l = side_u * side_v, theta_deg = 30;
+    const int W = 50;
+    for (bool two_sided : {false, true}) {
+        hittable_list world;
+        auto glow = make_shared<diffuse_light>(color(4, 4, 4));
+        if (two_sided) glow = make_shared<diffuse_light>(make_shared<solid_color>(color(4, 4, 4)), true);
+        world.add(make_shared<quad>(point3(-0.2, 3, -5), vec3(side_u, 0, 0), vec3(0, 0, side_v), glow));
+        world.add(make_shared<sphere>(point3(0, 1, -5), 0.5, make_shared<dielectric>(1.5)));
+        camera cam = test::test_camera(W, W, 1, 10);
+        cam.vfov = theta_deg;
+        cam.lookfrom = point3(0, 0, 0);
+        cam.lookat = point3(0, 0, -1);
+        const camera_frame frame = cam.frame();
+        const compiled_scene scene = compile_scene(world, frame.position);
+        REQUIRE(scene.lights.lights.size() == 1);
+        for (double N : {100.0, 2500.0}) {
+            const caustic_splats splats(scene, frame, 10, 1, N);
+            for (double d : {1.0, 4.0, 9.0}) {
+                const double pixel_side = 2 * d * std::tan(theta_deg * pi_d / 360) / W;
+                const double r = N * pixel_side * pixel_side / (A_l * (two_sided ? 2 : 1));
+                const float density = splats.camera_density(vec3f{0, 0, -float(d)}, vec3f{0, 0, 0}, vec3f{0, 0, 1});
+                INFO("N " << N << ", d " << d << ", two-sided " << two_sided << ": r = " << r);
+                CHECK(splats.camera_path_weight(0, density) == doctest::Approx(1 / (1 + r * r)).epsilon(1e-4));
+                CHECK(splats.light_path_weight(0, density) == doctest::Approx(r * r / (1 + r * r)).epsilon(1e-4));
+            }
+        }
+        // Where the camera cannot be joined to x (behind it), light tracing cannot make the path.
+        const caustic_splats splats(scene, frame, 10, 1, 100);
+        const float behind = splats.camera_density(vec3f{0, 0, 2}, vec3f{0, 0, 0}, vec3f{0, 0, -1});
+        CHECK(behind == 0.0f);
+        CHECK(splats.camera_path_weight(0, behind) == 1.0f);
+    }
+}
+
+TEST_CASE("an area light seen in a mirror lights a Lambertian patch, wide and zoomed in") {
+    // The patch (albedo A, half-width 0.3) at y = 0, a mirror facing down at y = h, and a square
+    // light of side s and radiance Le at height d, centred at x = X0, facing up: it lights the
+    // patch only through the mirror, as its image at height H = 2h - d facing down (centred at
+    // X0, out of the real light's shadow). At a point p of the patch, parallel planes H apart:
+    //     E(p) = Le * integral over the image of H^2 / |y - p|^4 dA_y,
+    // and the camera, looking straight down from height e, sees a square of half-width
+    // w = e tan(fov / 2) of radiance A E / pi, averaged over it (integrated numerically here).
+    // Left out: light the patch sends to itself through the mirror, (A / pi) times its image's
+    // solid angle 2h away, below 0.1 %.
+    const double A = 0.5, Le = 20, h = 3, d = 1, s = 0.5, X0 = 1.5, H = 2 * h - d;
+    hittable_list world;
+    world.add(make_shared<quad>(point3(-0.3, 0, -0.3), vec3(0, 0, 0.6), vec3(0.6, 0, 0),
+                                make_shared<lambertian>(color(A, A, A))));
+    world.add(make_shared<quad>(point3(-5, h, -5), vec3(10, 0, 0), vec3(0, 0, 10), make_shared<metal>(color(1, 1, 1), 0.0)));
+    // Normal u x v = +y: facing the mirror.
+    world.add(make_shared<quad>(point3(X0 - s / 2, d, -s / 2), vec3(0, 0, s), vec3(s, 0, 0),
+                                make_shared<diffuse_light>(color(Le, Le, Le))));
+    auto expected = [&](double w) {
+        const int np = 12, nl = 60;
+        double sum = 0;
+        for (int i = 0; i < np; ++i)
+            for (int j = 0; j < np; ++j) {
+                const double px = -w + (i + 0.5) * 2 * w / np, pz = -w + (j + 0.5) * 2 * w / np;
+                double e = 0;
+                for (int a = 0; a < nl; ++a)
+                    for (int b = 0; b < nl; ++b) {
+                        const double yx = X0 - s / 2 + (a + 0.5) * s / nl, yz = -s / 2 + (b + 0.5) * s / nl;
+                        const double r2 = (yx - px) * (yx - px) + (yz - pz) * (yz - pz) + H * H;
+                        e += H * H / (r2 * r2) * (s / nl) * (s / nl);
+                    }
+                sum += A / pi_d * Le * e;
+            }
+        return sum / (np * np);
+    };
+    auto render_mean = [&](double fov, double caustic_paths, uint64_t seed) {
+        camera cam = test::test_camera(16, 16, 256, 10);
+        cam.lookfrom = point3(0, 0.5, 0);
+        cam.lookat = point3(0, 0, 0);
+        cam.vup = vec3(1, 0, 0);
+        cam.vfov = fov;
+        cam.background = color(0, 0, 0);
+        cam.caustic_paths = caustic_paths;
+        cam.seed = seed;
+        return image_mean(render(cam, world).img);
+    };
+    // 16 x 16 pixels and 16 light paths per pixel: N = 4096 per sample. Wide, w = 0.25: a pixel
+    // covers (2w / 16)^2 of the patch and r = N (2w / 16)^2 / s^2 = 16, light tracing keeps
+    // 1 - 1/(1 + r^2) = 99.6 % of the caustic. Zoomed in, w = 0.05: r = 0.64, the camera paths
+    // keep 71 %. And the camera paths alone (no light paths) for the same view.
+    struct view {
+        double fov, caustic_paths;
+    };
+    for (view v : {view{2 * std::atan(0.5) * 180 / pi_d, 16.0}, view{2 * std::atan(0.1) * 180 / pi_d, 16.0},
+                   view{2 * std::atan(0.1) * 180 / pi_d, 0.0}}) {
+        const double w = 0.5 * std::tan(v.fov * pi_d / 360);
+        const double want = expected(w);
+        const int seeds = 8;
+        std::vector<double> means;
+        for (int seed = 1; seed <= seeds; ++seed) means.push_back(render_mean(v.fov, v.caustic_paths, uint64_t(seed)));
+        double m = 0, var = 0;
+        for (double x : means) m += x / seeds;
+        for (double x : means) var += (x - m) * (x - m) / (seeds - 1);
+        const double standard_error = std::sqrt(var / seeds);
+        INFO("half-width " << w << ", light paths " << v.caustic_paths << ": " << m << " +- " << standard_error
+                           << ", expected " << want);
+        CHECK(std::fabs(m - want) <= 5 * standard_error + 0.003 * want);
+        CHECK(standard_error < 0.05 * want); // the bound above is not a loose one
+    }
 }
 
 TEST_CASE("caustics traced from the lights: the same image at one and two threads") {

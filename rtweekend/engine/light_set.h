@@ -113,6 +113,9 @@ class light_set {
         return all_.members[slot];
     }
 
+    // The probability pick() (and sample()) chooses light l with.
+    float pick_pmf(uint32_t l) const { return all_.select.pmf(all_.slot[l]); }
+
     // The density sample() gives the direction from p to the point y (normal ny) of area light l,
     // selection included.
     float pdf(uint32_t l, const vec3f& p, const vec3f& y, const vec3f& ny) const {

@@ -140,11 +140,11 @@ struct vertex_material {
 // One path from the camera, estimated with E: the radiance it carries. Materials see the shading
 // normal (a smooth mesh's interpolated one, folded as vertex_material says; else the geometric
 // normal). Each decision draws from its own dimension of the sampler (sampler.h).
-// With caustics_traced, the paths light tracing takes (caustic_paths.h) are left out here: camera ->
-// x (its non-delta lobe sampled) -> one or more delta vertices -> a light.
+// With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x, its non-delta
+// lobe sampled -> one or more delta vertices -> a light) count here by the path tracer's share.
 template <path_estimator E, bool UserMaterials>
 vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pixel_sampler& ps,
-                 uint64_t& rays, bool caustics_traced = false) {
+                 uint64_t& rays, const caustic_splats* caustics = nullptr) {
     const light_set& lights = scene.lights;
     const int roulette_start = roulette_depth(lights);
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
@@ -157,9 +157,12 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
     bool count_emission_fully = true;
     vec3f last_p;
     float last_pdf = 0;
-    // Where the path stands in the pattern light tracing takes: none, at x (the camera's first
-    // vertex, which sampled its non-delta lobe), or past one or more delta vertices after x.
+    // Where the path stands in the pattern light tracing also finds: none, at x (the camera's first
+    // vertex, which sampled its non-delta lobe), or past one or more delta vertices after x; and
+    // the camera's density at x, which weighs the two.
     enum class caustic_state : uint8_t { none, at_x, past_delta } caustic = caustic_state::none;
+    float x_density = 0;
+    const vec3f lens = r.origin;
     for (int depth = 0; depth < max_depth; ++depth) {
         ++rays;
         if (!scene.intersect(r, hit))
@@ -190,9 +193,9 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
                 }
             }
             if (caustic == caustic_state::past_delta) {
-                // Light tracing's path, unless the light is one it does not start from.
+                // Light tracing finds this path too: the path tracer's share of it.
                 const uint32_t l = lights.light_at(hit.kind, hit.index);
-                if (l != light_set::none && lights.lights[l].texture == UINT32_MAX) weight = 0;
+                if (l != light_set::none) weight *= caustics->camera_path_weight(l, x_density);
             }
             radiance += throughput * le * weight;
         }
@@ -269,10 +272,12 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             return radiance;
         }
         throughput *= s.value;
-        if (caustics_traced) {
-            const bool plain = caustic_vertex(hit, m); // caustics_traced: no user code in the scene
-            if (depth == 0) caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
-            else if (caustic != caustic_state::none)
+        if (caustics) {
+            const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
+            if (depth == 0) {
+                caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
+                if (caustic == caustic_state::at_x) x_density = caustics->camera_density(hit.p, lens, hit.normal);
+            } else if (caustic != caustic_state::none)
                 caustic = plain && s.is_delta() ? caustic_state::past_delta : caustic_state::none;
         }
         count_emission_fully = E != path_estimator::nee || s.is_delta();
@@ -313,21 +318,12 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     if (caustics) {
         caustic_splats splats(scene, frame, max_depth, settings.seed,
                               settings.caustic_paths * double(frame.width) * double(frame.height));
-        // The pilot: which pixels light paths reach (caustic_paths.h).
-        const size_t pixels = size_t(frame.width) * size_t(frame.height);
-        std::vector<std::atomic<uint8_t>> reached(pixels);
-        detail::run_jobs(detail::render_threads(settings, splats.pilot_jobs()), splats.pilot_jobs(),
-                             [&](int job, detail::sample_totals& mine) { splats.run_pilot(job, reached, mine); });
-        std::vector<uint8_t> taken(pixels);
-        for (size_t i = 0; i < pixels; ++i) taken[i] = reached[i].load(std::memory_order_relaxed);
-        splats.take_pixels(std::move(taken));
         return render_samples_with_splats(
             frame.width, frame.height, settings,
             [&](int x, int y, int s, pcg32& rng, uint64_t& rays) {
                 pixel_sampler ps(plan, x, y, s, rng);
                 ray3f r = frame.sample_ray(x, y, spp, ps, with_time);
-                return detail::trace_path<path_estimator::nee, false>(scene, env, r, max_depth, ps, rays,
-                                                                      splats.takes(x, y));
+                return detail::trace_path<path_estimator::nee, false>(scene, env, r, max_depth, ps, rays, &splats);
             },
             splats, start);
     }
