@@ -79,6 +79,20 @@ inline bool caustic_vertex(const surface_hit& hit, const compiled_material& m) {
     return !hit.user_shape && m.kind != material_kind::user && m.kind != material_kind::isotropic && !hit.smooth_shaded();
 }
 
+namespace detail {
+
+// The density of light paths' starting points on light l (chosen with probability pmf), per unit
+// of its area and per path: pmf / (sides * area), a two-sided light picking a side. 0 for a light
+// light paths do not start from (textured) or a degenerate one; infinite for a point light.
+inline float light_path_start_density(const light& l, float pmf) {
+    if (l.texture != UINT32_MAX || !(pmf > 0)) return 0.0f;
+    if (l.is_delta()) return std::numeric_limits<float>::infinity();
+    const float density = pmf / ((l.two_sided ? 2.0f : 1.0f) * l.area());
+    return std::isfinite(density) && density > 0 ? density : 0.0f;
+}
+
+} // namespace detail
+
 // One light path (the numbers from rng): splat(x, y, value, light, camera_density) for each pixel
 // it adds to, with the index of the light it started from and the camera's density at the surface
 // point it was joined from (caustic_splats::camera_density); rays counts the rays traced.
@@ -118,19 +132,10 @@ class caustic_splats {
     caustic_splats(const compiled_scene& scene, const camera_frame& frame, int max_depth, uint64_t seed, double paths)
         : scene_(scene), frame_(frame), max_depth_(max_depth), seed_(mix64(seed ^ 0x6c1d5e0b7f4a2c93ULL)),
           paths_(std::max<int64_t>(1, std::llround(std::min(paths, 1e15)))) {
-        // Per light: light-path starts per unit area and per path, P(l) / (sides * A_l); 0 for a
-        // light that light paths do not start from (textured), infinite for a point light.
+        // Per light: light-path starts per unit area and per path (detail::light_path_start_density).
         start_density_.resize(scene.lights.lights.size(), 0.0f);
-        for (uint32_t l = 0; l < start_density_.size(); ++l) {
-            const light& li = scene.lights.lights[l];
-            if (li.texture != UINT32_MAX) continue;
-            if (li.is_delta()) {
-                start_density_[l] = std::numeric_limits<float>::infinity();
-                continue;
-            }
-            const double d = double(scene.lights.pick_pmf(l)) / ((li.two_sided ? 2.0 : 1.0) * double(li.area()));
-            start_density_[l] = std::isfinite(d) && d > 0 ? float(d) : 0.0f;
-        }
+        for (uint32_t l = 0; l < start_density_.size(); ++l)
+            start_density_[l] = detail::light_path_start_density(scene.lights.lights[l], scene.lights.pick_pmf(l));
     }
 
     int jobs_per_sample() const { return int((paths_ + paths_per_job - 1) / paths_per_job); }
@@ -205,7 +210,8 @@ inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, 
 // the throughput the path carries. False when l is textured (left to the path tracer) or
 // degenerate.
 inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, vec3f& throughput) {
-    if (l.texture != UINT32_MAX || !(pmf > 0)) return false;
+    const float density = light_path_start_density(l, pmf);
+    if (!(density > 0)) return false;
     const auto [u1, u2] = draw_2d(rng);
     if (l.kind == light_kind::point) {
         r.origin = l.p0;
@@ -213,8 +219,6 @@ inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, ve
         throughput = l.emission * (4.0f * pi_f / pmf);
         return true;
     }
-    const float area = l.area();
-    if (!(area > 0) || !std::isfinite(area)) return false;
     vec3f y, n;
     switch (l.kind) {
     case light_kind::sphere:
@@ -233,15 +237,11 @@ inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, ve
     }
     case light_kind::point: break;
     }
-    float sides = 1.0f;
-    if (l.two_sided) {
-        sides = 2.0f;
-        if (rng.next_float() < 0.5f) n = -n;
-    }
+    if (l.two_sided && rng.next_float() < 0.5f) n = -n;
     const auto [v1, v2] = draw_2d(rng);
     r.dir = sample_cosine_direction(n, v1, v2);
     r.origin = offset_ray_origin(y, n);
-    throughput = l.emission * (sides * pi_f * area / pmf);
+    throughput = l.emission * (pi_f / density); // Le cos / (density cos / pi)
     return true;
 }
 

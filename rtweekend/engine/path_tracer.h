@@ -24,7 +24,6 @@
 #include "surface_coordinates.h"
 #include "user_material.h"
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <limits>
@@ -159,9 +158,9 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
     float last_pdf = 0;
     // Where the path stands in the pattern light tracing also finds: none, at x (the camera's first
     // vertex, which sampled its non-delta lobe), or past one or more delta vertices after x; and
-    // the camera's density at x, which weighs the two.
+    // x itself, whose camera density weighs the two (asked only of the paths that end on a light).
     enum class caustic_state : uint8_t { none, at_x, past_delta } caustic = caustic_state::none;
-    float x_density = 0;
+    vec3f x_p, x_normal;
     const vec3f lens = r.origin;
     for (int depth = 0; depth < max_depth; ++depth) {
         ++rays;
@@ -195,7 +194,8 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             if (caustic == caustic_state::past_delta) {
                 // Light tracing finds this path too: the path tracer's share of it.
                 const uint32_t l = lights.light_at(hit.kind, hit.index);
-                if (l != light_set::none) weight *= caustics->camera_path_weight(l, x_density);
+                if (l != light_set::none)
+                    weight *= caustics->camera_path_weight(l, caustics->camera_density(x_p, lens, x_normal));
             }
             radiance += throughput * le * weight;
         }
@@ -276,7 +276,8 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
             const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
             if (depth == 0) {
                 caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
-                if (caustic == caustic_state::at_x) x_density = caustics->camera_density(hit.p, lens, hit.normal);
+                x_p = hit.p;
+                x_normal = hit.normal;
             } else if (caustic != caustic_state::none)
                 caustic = plain && s.is_delta() ? caustic_state::past_delta : caustic_state::none;
         }
