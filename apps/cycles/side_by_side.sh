@@ -29,7 +29,8 @@
 # Environment: BLENDER, BUILD (dir of render/compare), THREADS, CYCLES_SPP, REF_SPP, CORNELL_REF,
 # LADDER_MAX (most rtweekend spp, default 65536), NICE (a command prefix, e.g. "nice -n 19"),
 # CYCLES_ARGS (more options for cycles_scene.py, e.g. "--glass schlick"; the cached Cycles
-# references are then the wrong ones: use another OUTDIR).
+# references are then the wrong ones: use another OUTDIR), SCENES (which to run: "cover cornell",
+# the default, or one of them).
 # A full run (2 threads, REF_SPP 4096, references not cached) takes about 30-40 minutes.
 set -euo pipefail
 
@@ -45,6 +46,9 @@ CORNELL_REF="${CORNELL_REF:-}"
 LADDER_MAX="${LADDER_MAX:-65536}"
 NICE="${NICE:-}"
 CYCLES_ARGS="${CYCLES_ARGS:-}"
+SCENES="${SCENES:-cover cornell}"
+case " $SCENES " in *" cover "*|*" cornell "*) ;; *) echo "side_by_side.sh: SCENES='$SCENES' names neither cover nor cornell" >&2; exit 1;; esac
+want() { case " $SCENES " in *" $1 "*) return 0;; esac; return 1; }
 mkdir -p "$out"
 runs="$out/runs.csv"
 echo "scene,renderer,kind,spp,seconds,mse,process_seconds,file" > "$runs"
@@ -195,11 +199,15 @@ EOF
 
 # The cover's reference is the book's own code at 6144 spp: the book's algorithm is rtweekend's
 # bsdf estimator with independent random numbers.
-run_scene cover "$root/tests/data/rtiow_cover.txt" 400 "$root/tests/data/rtiow_cover_400x225_ref.pfm" 6144 \
-    --estimator bsdf --sampler independent
-cref="$out/rtweekend_ref_cornell_300_4096spp_seed999.pfm"
-[ -n "$CORNELL_REF" ] && [ -s "$CORNELL_REF" ] && cref="$CORNELL_REF"
-run_scene cornell "$root/tests/data/cornell_final.txt" 300 "$cref" 4096
+if want cover; then
+    run_scene cover "$root/tests/data/rtiow_cover.txt" 400 "$root/tests/data/rtiow_cover_400x225_ref.pfm" 6144 \
+        --estimator bsdf --sampler independent
+fi
+if want cornell; then
+    cref="$out/rtweekend_ref_cornell_300_4096spp_seed999.pfm"
+    [ -n "$CORNELL_REF" ] && [ -s "$CORNELL_REF" ] && cref="$CORNELL_REF"
+    run_scene cornell "$root/tests/data/cornell_final.txt" 300 "$cref" 4096
+fi
 
 python3 - "$summary" "$THREADS" > "$out/side_by_side.md" <<'EOF'
 import csv, sys
