@@ -224,6 +224,8 @@ print()
 print("%s threads; MSE linear, each renderer against its own converged reference." % sys.argv[2])
 print()
 EOF
-cat "$out"/refs_cover.txt "$out"/refs_cornell.txt >> "$out/side_by_side.md"
+for name in cover cornell; do
+    if want "$name"; then cat "$out/refs_$name.txt" >> "$out/side_by_side.md"; fi
+done
 cat "$out/side_by_side.md"
 echo "CSV: $summary (summary), $runs (every render)"
