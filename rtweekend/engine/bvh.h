@@ -490,9 +490,10 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
                     ref = child[near];
                     continue;
                 }
-                // Three or more: continue with the nearest, push the others farthest first.
+                // Three or more: sorted in place on the stack, farthest deepest; go on with the
+                // nearest.
                 mask |= 1u << second;
-                entry hits[8];
+                entry* hits = stack + top;
                 int n = 0;
                 hits[n++] = {child[first], tnear[first]};
                 while (mask) {
@@ -506,7 +507,7 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
                     }
                     hits[k] = e;
                 }
-                for (int i = 0; i < n - 1; ++i) stack[top++] = hits[i];
+                top += n - 1;
                 ref = hits[n - 1].ref;
                 continue;
             }
