@@ -5,9 +5,10 @@
 #
 # For the book-1 cover (400x225) and book 3's final Cornell box (300x300):
 #   1. converged references, cached in OUTDIR: Cycles' own (REF_SPP samples, default 4096) and
-#      rtweekend's own (the cover: tests/data/rtiow_cover_400x225_ref.pfm, the book's code at 6144
-#      spp; the Cornell box: $CORNELL_REF if that file exists, else
-#      render --width 300 --spp 4096 --seed 999);
+#      rtweekend's own, rendered with its defaults and seed 999 at OUR_REF_SPP samples (default
+#      32768 for the cover, 16384 for the Cornell box), or $COVER_REF / $CORNELL_REF if that file
+#      exists. (Until 2026-11-25 the cover's was the book's 6144-spp image: its own noise was
+#      then 40 % of our MSE at 256 Cycles spp.)
 #   2. Cycles at CYCLES_SPP (default "16 64 256") samples on THREADS (default 2) threads: the time
 #      of its render call (scene sync + BVH + render; Blender's start and the Python scene build
 #      are not counted) and its MSE against the Cycles reference;
@@ -26,12 +27,13 @@
 # numbers) and the last ratio is of the MSEs less their floors.
 # Needs: blender (Debian 12: apt-get install blender; 3.4.1 tested), python3, and the project's
 # build (cmake --build build): build/apps/render and build/apps/compare. Not part of CI.
-# Environment: BLENDER, BUILD (dir of render/compare), THREADS, CYCLES_SPP, REF_SPP, CORNELL_REF,
+# Environment: BLENDER, BUILD (dir of render/compare), THREADS, CYCLES_SPP, REF_SPP, OUR_REF_SPP,
+# COVER_REF, CORNELL_REF,
 # LADDER_MAX (most rtweekend spp, default 65536), NICE (a command prefix, e.g. "nice -n 19"),
 # CYCLES_ARGS (more options for cycles_scene.py, e.g. "--glass schlick"; the cached Cycles
 # references are then the wrong ones: use another OUTDIR), SCENES (which to run: "cover cornell",
 # the default, or one of them).
-# A full run (2 threads, REF_SPP 4096, references not cached) takes about 30-40 minutes.
+# A full run (2 threads, references not cached) takes about an hour; with them cached, about 6 minutes.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -42,6 +44,8 @@ BUILD="${BUILD:-$root/build/apps}"
 THREADS="${THREADS:-2}"
 CYCLES_SPP="${CYCLES_SPP:-16 64 256}"
 REF_SPP="${REF_SPP:-4096}"
+OUR_REF_SPP="${OUR_REF_SPP:-}"
+COVER_REF="${COVER_REF:-}"
 CORNELL_REF="${CORNELL_REF:-}"
 LADDER_MAX="${LADDER_MAX:-65536}"
 NICE="${NICE:-}"
@@ -107,9 +111,9 @@ run_scene() {
         echo "$name,cycles,reference,$REF_SPP,$secs,,$wall,$cref" >> "$runs"
     fi
     if [ ! -s "$our_ref" ]; then
-        echo "   rtweekend reference, 4096 spp seed 999 (cached afterwards in $our_ref)..." >&2
-        secs=$(ours "$scene" "$width" 4096 "$our_ref" --seed 999)
-        echo "$name,rtweekend,reference,4096,$secs,,$secs,$our_ref" >> "$runs"
+        echo "   rtweekend reference, $our_ref_spp spp seed 999 (cached afterwards in $our_ref)..." >&2
+        secs=$(ours "$scene" "$width" "$our_ref_spp" "$our_ref" --seed 999)
+        echo "$name,rtweekend,reference,$our_ref_spp,$secs,,$secs,$our_ref" >> "$runs"
     fi
     echo "   references: Cycles $cref, rtweekend $our_ref" >&2
     # How far apart the two converged images are (the mapping's differences; compare's bias is the
@@ -197,16 +201,19 @@ for spp, t, m, after in sorted(cyc):
 EOF
 }
 
-# The cover's reference is the book's own code at 6144 spp: the book's algorithm is rtweekend's
-# bsdf estimator with independent random numbers.
+# rtweekend's references: its own renders with its defaults (so the floor estimate is the 16-spp
+# run's MSE scaled as 1/spp; with Sobol numbers, whose MSE falls faster, an upper bound).
 if want cover; then
-    run_scene cover "$root/tests/data/rtiow_cover.txt" 400 "$root/tests/data/rtiow_cover_400x225_ref.pfm" 6144 \
-        --estimator bsdf --sampler independent
+    n="${OUR_REF_SPP:-32768}"
+    ref="$out/rtweekend_ref_cover_400_${n}spp_seed999.pfm"
+    [ -n "$COVER_REF" ] && [ -s "$COVER_REF" ] && ref="$COVER_REF"
+    run_scene cover "$root/tests/data/rtiow_cover.txt" 400 "$ref" "$n"
 fi
 if want cornell; then
-    cref="$out/rtweekend_ref_cornell_300_4096spp_seed999.pfm"
-    [ -n "$CORNELL_REF" ] && [ -s "$CORNELL_REF" ] && cref="$CORNELL_REF"
-    run_scene cornell "$root/tests/data/cornell_final.txt" 300 "$cref" 4096
+    n="${OUR_REF_SPP:-16384}"
+    ref="$out/rtweekend_ref_cornell_300_${n}spp_seed999.pfm"
+    [ -n "$CORNELL_REF" ] && [ -s "$CORNELL_REF" ] && ref="$CORNELL_REF"
+    run_scene cornell "$root/tests/data/cornell_final.txt" 300 "$ref" "$n"
 fi
 
 python3 - "$summary" "$THREADS" > "$out/side_by_side.md" <<'EOF'
