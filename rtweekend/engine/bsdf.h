@@ -276,15 +276,6 @@ struct half_vector {
     }
 };
 
-// An orthonormal basis across the unit vector w, without a branch on its direction: Duff et al.,
-// "Building an Orthonormal Basis, Revisited", JCGT 6(1), 2017.
-inline void frame_across(const vec3f& w, vec3f& e1, vec3f& e2) {
-    const float sign = std::copysign(1.0f, w.z);
-    const float a = -1.0f / (sign + w.z);
-    const float b = w.x * w.y * a;
-    e1 = {1.0f + sign * w.x * w.x * a, sign * b, -sign * w.x};
-    e2 = {b, sign + w.y * w.y * a, -w.y};
-}
 } // namespace detail
 
 inline float blinn_phong_lobe(const vec3f& wo, const vec3f& wi, const vec3f& n, float exponent) {
@@ -470,7 +461,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
             const float cos_h = std::pow(u1, 1.0f / (exponent + 1.0f));
             const float sin_h = std::sqrt(std::fmax(0.0f, 1.0f - cos_h * cos_h));
             vec3f e1, e2;
-            detail::frame_across(n, e1, e2);
+            frame_across(n, e1, e2);
             const vec3f c = unit_circle(u2);
             const vec3f h = (sin_h * c.x) * e1 + (sin_h * c.y) * e2 + cos_h * n;
             s.wi = normalize(2.0f * dot(wo, h) * h - wo);

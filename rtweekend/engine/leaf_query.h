@@ -10,6 +10,7 @@
 #include "simd.h"
 
 #include <cstdint>
+#include <limits>
 
 namespace rt {
 
@@ -32,15 +33,11 @@ struct hit_ref {
 // Makes the nearest of the lanes in `hits` the best hit if it is nearer than t_best. Lane k
 // holds shape first_lane + k of `kind`, at distance t[k].
 inline void take_closest(maskv hits, floatv t, shape_kind kind, uint32_t first_lane, float& t_best, hit_ref& best) {
-    alignas(64) float lane_t[floatv::width];
-    t.store(lane_t);
-    for (unsigned mask = bits(hits); mask; mask &= mask - 1) {
-        unsigned k = unsigned(__builtin_ctz(mask));
-        if (lane_t[k] < t_best) {
-            t_best = lane_t[k];
-            best = {kind, first_lane + k};
-        }
-    }
+    const floatv candidates = select(hits, t, floatv(std::numeric_limits<float>::infinity()));
+    const float nearest = reduce_min(candidates);
+    if (!(nearest < t_best)) return;
+    t_best = nearest;
+    best = {kind, first_lane + unsigned(__builtin_ctz(bits(candidates == floatv(nearest))))};
 }
 
 } // namespace rt

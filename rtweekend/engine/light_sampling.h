@@ -141,17 +141,6 @@ float triangle_light_pdf(const vec3f& p, const vec3f& a, const vec3f& b, const v
 
 namespace detail {
 
-// An orthonormal basis (e1, e2) across the unit vector w, without a branch on w's direction:
-// Duff, Burgess, Christensen, Hery, Kensler, Liani and Villemin, "Building an Orthonormal Basis,
-// Revisited", JCGT 6(1), 2017.
-inline void basis_across(const vec3f& w, vec3f& e1, vec3f& e2) {
-    const float sign = std::copysign(1.0f, w.z);
-    const float a = -1.0f / (sign + w.z);
-    const float b = w.x * w.y * a;
-    e1 = {1.0f + sign * w.x * w.x * a, sign * b, -sign * w.x};
-    e2 = {b, sign + w.y * w.y * a, -w.y};
-}
-
 // Fills s for the point y (normal n) drawn with area density area_pdf; the density is the one the
 // matching *_pdf function computes, by the same expression.
 inline bool finish_area_sample(const vec3f& p, const vec3f& y, const vec3f& n, float area_pdf, light_sample& s) {
@@ -395,7 +384,7 @@ inline bool sample_sphere_light(const vec3f& p, const vec3f& c, float r, float u
     const float cos_alpha = sin2_theta / sin_max + cos_theta * B;
     const float sin_alpha = sin_theta * (1.0f - sin2_max) / (sin_max * (cos_theta + sin_max * B));
     vec3f e1, e2;
-    detail::basis_across(w, e1, e2);
+    frame_across(w, e1, e2);
     const vec3f circle = unit_circle(u2);
     const vec3f n = normalize(-cos_alpha * w + (sin_alpha * circle.x) * e1 + (sin_alpha * circle.y) * e2);
     const vec3f y = c + r * n;

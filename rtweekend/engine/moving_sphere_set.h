@@ -71,7 +71,7 @@ template <query Q>
 RTWEEKEND_FORCE_INLINE bool moving_sphere_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n,
                                                               float& t_best, hit_ref& best) const {
     constexpr size_t W = floatv::width;
-    const floatv lanes = lane_index(), tmin(ray.tmin), zero(0.0f), time(ray.time);
+    const floatv tmin(ray.tmin), zero(0.0f), time(ray.time);
     const floatv ox(ray.origin.x), oy(ray.origin.y), oz(ray.origin.z);
     const floatv dx(ray.dir.x), dy(ray.dir.y), dz(ray.dir.z);
     bool found = false;
@@ -84,7 +84,7 @@ RTWEEKEND_FORCE_INLINE bool moving_sphere_set::intersect_leaf(const ray3f& ray, 
         floatv h = dx * ocx + dy * ocy + dz * ocz;
         floatv px = ocx - h * dx, py = ocy - h * dy, pz = ocz - h * dz;
         floatv disc = rr - (px * px + py * py + pz * pz);
-        maskv crosses = (disc >= zero) & (lanes < floatv(float(first + n - i)));
+        maskv crosses = (disc >= zero) & first_lanes(first + n - i);
         if (!any(crosses)) continue;
         floatv c = (ocx * ocx + ocy * ocy + ocz * ocz) - rr;
         floatv s = sqrt(max(disc, zero));

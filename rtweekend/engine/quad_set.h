@@ -75,7 +75,7 @@ template <query Q>
 RTWEEKEND_FORCE_INLINE bool quad_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best,
                                                      hit_ref& best) const {
     constexpr size_t W = floatv::width;
-    const floatv lanes = lane_index(), tmin(ray.tmin), zero(0.0f), one(1.0f);
+    const floatv tmin(ray.tmin), zero(0.0f), one(1.0f);
     const floatv ox(ray.origin.x), oy(ray.origin.y), oz(ray.origin.z);
     const floatv dx(ray.dir.x), dy(ray.dir.y), dz(ray.dir.z);
     bool found = false;
@@ -86,7 +86,7 @@ RTWEEKEND_FORCE_INLINE bool quad_set::intersect_leaf(const ray3f& ray, uint32_t 
         floatv nx = load(normal_field, 0), ny = load(normal_field, 1), nz = load(normal_field, 2);
         floatv denom = nx * dx + ny * dy + nz * dz;
         floatv t = (nx * qx + ny * qy + nz * qz) / denom; // parallel: infinite or NaN, rejected below
-        maskv candidates = (t > tmin) & (t < floatv(t_best)) & (lanes < floatv(float(first + n - i)));
+        maskv candidates = (t > tmin) & (t < floatv(t_best)) & first_lanes(first + n - i);
         // The ray meets the back face when it travels along n: culled quads keep only front hits.
         if constexpr (Q == query::closest_culled)
             candidates = candidates & ((denom < zero) | (floatv::load(&cull[i]) == zero));

@@ -50,6 +50,17 @@ inline vec3f sample_unit_disk(float u1, float u2) {
     return {r * circle.x, r * circle.y, 0.0f};
 }
 
+// An orthonormal basis (e1, e2) across the unit vector w, without a branch on w's direction:
+// Duff, Burgess, Christensen, Hery, Kensler, Liani and Villemin, "Building an Orthonormal Basis,
+// Revisited", JCGT 6(1), 2017. (e1, e2, w) is right-handed.
+inline void frame_across(const vec3f& w, vec3f& e1, vec3f& e2) {
+    const float sign = std::copysign(1.0f, w.z);
+    const float a = -1.0f / (sign + w.z);
+    const float b = w.x * w.y * a;
+    e1 = {1.0f + sign * w.x * w.x * a, sign * b, -sign * w.x};
+    e2 = {b, sign + w.y * w.y * a, -w.y};
+}
+
 // Cosine-weighted direction about the unit normal n: n plus a uniform unit vector, normalised,
 // has density cos(theta)/pi (the book's Lambertian construction). The degenerate case where the
 // two cancel falls back to n.

@@ -4,9 +4,13 @@
 // widest the machine has) and to plain scalar code elsewhere, with the same source.
 //
 //   floatv a = floatv::load(ptr), b(2.0f);    a + b, a * b, a / b, sqrt(a), min(a, b)
+//   fmadd(a, b, c), fnmadd(a, b, c)           a * b + c and c - a * b, fused where the machine
+//                                             has FMA (written out, so the result does not depend
+//                                             on what the compiler may contract)
 //   maskv m = a < b;                          select(m, a, b), any(m), m & n, m | n
 //   bits(m)                                   one bit per lane, lane 0 in bit 0
-//   lane_index()                              0, 1, 2, ... width-1
+//   first_lanes(n)                            the lanes below n (all of them for n >= width)
+//   reduce_min(a)                             the smallest lane
 //
 // Lane counts are a compile-time property: floatv::width.
 
@@ -54,6 +58,18 @@ inline maskv operator|(maskv a, maskv b) { return {static_cast<__mmask16>(a.m | 
 inline floatv select(maskv m, floatv a, floatv b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
 inline bool any(maskv m) { return m.m != 0; }
 inline unsigned bits(maskv m) { return m.m; }
+inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
+inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }
+inline maskv first_lanes(unsigned n) { return {static_cast<__mmask16>(n >= 16 ? 0xFFFFu : (1u << n) - 1u)}; }
+inline float reduce_min(floatv a) {
+    // Halves folded onto each other, then quarters, pairs and neighbours (the maskz forms, and not
+    // _mm512_reduce_min_ps, for the warning above).
+    __m512 m = _mm512_maskz_min_ps(0xFFFF, a.v, _mm512_maskz_shuffle_f32x4(0xFFFF, a.v, a.v, 0x4E));
+    m = _mm512_maskz_min_ps(0xFFFF, m, _mm512_maskz_shuffle_f32x4(0xFFFF, m, m, 0xB1));
+    m = _mm512_maskz_min_ps(0xFFFF, m, _mm512_maskz_permute_ps(0xFFFF, m, 0x4E));
+    m = _mm512_maskz_min_ps(0xFFFF, m, _mm512_maskz_permute_ps(0xFFFF, m, 0xB1));
+    return _mm512_cvtss_f32(m);
+}
 
 #elif defined(__AVX__)
 
@@ -86,6 +102,22 @@ inline maskv operator|(maskv a, maskv b) { return {_mm256_or_ps(a.m, b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm256_blendv_ps(b.v, a.v, m.m); }
 inline bool any(maskv m) { return _mm256_movemask_ps(m.m) != 0; }
 inline unsigned bits(maskv m) { return static_cast<unsigned>(_mm256_movemask_ps(m.m)); }
+#if defined(__FMA__)
+inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm256_fmadd_ps(a.v, b.v, c.v); }
+inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm256_fnmadd_ps(a.v, b.v, c.v); }
+#else
+inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm256_add_ps(_mm256_mul_ps(a.v, b.v), c.v); }
+inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm256_sub_ps(c.v, _mm256_mul_ps(a.v, b.v)); }
+#endif
+inline maskv first_lanes(unsigned n) {
+    return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(int(n < 8 ? n : 8)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)))};
+}
+inline float reduce_min(floatv a) {
+    __m128 m = _mm_min_ps(_mm256_castps256_ps128(a.v), _mm256_extractf128_ps(a.v, 1));
+    m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+    m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+    return _mm_cvtss_f32(m);
+}
 
 #elif defined(RTWEEKEND_SSE2)
 
@@ -118,6 +150,16 @@ inline maskv operator|(maskv a, maskv b) { return {_mm_or_ps(a.m, b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm_or_ps(_mm_and_ps(m.m, a.v), _mm_andnot_ps(m.m, b.v)); }
 inline bool any(maskv m) { return _mm_movemask_ps(m.m) != 0; }
 inline unsigned bits(maskv m) { return static_cast<unsigned>(_mm_movemask_ps(m.m)); }
+inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm_add_ps(_mm_mul_ps(a.v, b.v), c.v); }
+inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm_sub_ps(c.v, _mm_mul_ps(a.v, b.v)); }
+inline maskv first_lanes(unsigned n) {
+    return {_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_set1_epi32(int(n < 4 ? n : 4)), _mm_setr_epi32(0, 1, 2, 3)))};
+}
+inline float reduce_min(floatv a) {
+    __m128 m = _mm_min_ps(a.v, _mm_movehl_ps(a.v, a.v));
+    m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+    return _mm_cvtss_f32(m);
+}
 
 #else
 
@@ -149,6 +191,10 @@ inline maskv operator|(maskv a, maskv b) { return {a.m || b.m}; }
 inline floatv select(maskv m, floatv a, floatv b) { return m.m ? a : b; }
 inline bool any(maskv m) { return m.m; }
 inline unsigned bits(maskv m) { return m.m ? 1u : 0u; }
+inline floatv fmadd(floatv a, floatv b, floatv c) { return std::fma(a.v, b.v, c.v); }
+inline floatv fnmadd(floatv a, floatv b, floatv c) { return std::fma(-a.v, b.v, c.v); }
+inline maskv first_lanes(unsigned n) { return {n > 0}; }
+inline float reduce_min(floatv a) { return a.v; }
 
 #endif
 
@@ -167,11 +213,5 @@ inline T rounded(T x) {
     return x;
 }
 inline floatv rounded(floatv x) { return floatv(rounded(x.v)); }
-
-// The lanes' own numbers, 0 .. width-1: for "lane < count" masks and for remembering which lane won.
-inline floatv lane_index() {
-    alignas(64) static constexpr float lanes[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    return floatv::load(lanes);
-}
 
 } // namespace rt

@@ -63,7 +63,7 @@ struct sphere_set {
 template <query Q>
 RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const {
     constexpr size_t W = floatv::width;
-    const floatv lanes = lane_index(), tmin(ray.tmin), zero(0.0f);
+    const floatv tmin(ray.tmin), zero(0.0f);
     const floatv ox(ray.origin.x), oy(ray.origin.y), oz(ray.origin.z);
     const floatv dx(ray.dir.x), dy(ray.dir.y), dz(ray.dir.z);
     bool found = false;
@@ -71,12 +71,12 @@ RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_
         floatv ocx = floatv::load(&x[i]) - ox, ocy = floatv::load(&y[i]) - oy, ocz = floatv::load(&z[i]) - oz;
         floatv rr = floatv::load(&r2[i]);
         // Compute the quadratic's h = d.(C - O) and its discriminant from the distance to the line.
-        floatv h = dx * ocx + dy * ocy + dz * ocz;
-        floatv px = ocx - h * dx, py = ocy - h * dy, pz = ocz - h * dz;
-        floatv disc = rr - (px * px + py * py + pz * pz);
-        maskv crosses = (disc >= zero) & (lanes < floatv(float(first + n - i)));
+        floatv h = fmadd(dx, ocx, fmadd(dy, ocy, dz * ocz));
+        floatv px = fnmadd(h, dx, ocx), py = fnmadd(h, dy, ocy), pz = fnmadd(h, dz, ocz);
+        floatv disc = rr - fmadd(px, px, fmadd(py, py, pz * pz));
+        maskv crosses = (disc >= zero) & first_lanes(first + n - i);
         if (!any(crosses)) continue;
-        floatv c = (ocx * ocx + ocy * ocy + ocz * ocz) - rr;
+        floatv c = fmadd(ocx, ocx, fmadd(ocy, ocy, ocz * ocz)) - rr;
         floatv s = sqrt(max(disc, zero));
         floatv q = select(h >= zero, h + s, h - s);
         floatv ta = c / q;

@@ -95,7 +95,7 @@ template <query Q>
 RTWEEKEND_FORCE_INLINE bool triangle_set::intersect_leaf(const ray3f& ray, const triangle_ray& tr, uint32_t first, uint32_t n, float& t_best,
                                   hit_ref& best) const {
     constexpr size_t W = floatv::width;
-    const floatv lanes = lane_index(), tmin(ray.tmin), zero(0.0f);
+    const floatv tmin(ray.tmin), zero(0.0f);
     const int kx = tr.shear.kx, ky = tr.shear.ky, kz = tr.shear.kz;
     const floatv sx(tr.shear.sx), sy(tr.shear.sy), sz(tr.shear.sz);
     const floatv ox(tr.ox), oy(tr.oy), oz(tr.oz);
@@ -110,7 +110,7 @@ RTWEEKEND_FORCE_INLINE bool triangle_set::intersect_leaf(const ray3f& ray, const
         // triangles must give exactly opposite values in both (see rounded() in simd.h).
         floatv u = rounded(cx * by) - rounded(cy * bx), v = rounded(ax * cy) - rounded(ay * cx),
                w = rounded(bx * ay) - rounded(by * ax);
-        maskv valid = lanes < floatv(float(first + n - i));
+        maskv valid = first_lanes(first + n - i);
         maskv on_edge = valid & ((u == zero) | (v == zero) | (w == zero));
         if (any(on_edge)) {
             // The ray passes exactly through an edge or vertex in float: decide in double, as

@@ -63,12 +63,28 @@ inline std::vector<unsigned char> encode_8bit(const image& img) {
 // to bottom.
 inline std::string ppm_text(int width, int height, const std::vector<unsigned char>& bytes) {
     std::string text = "P3\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
-    text.reserve(text.size() + bytes.size() * 4);
-    char line[16];
+    // The decimal digits of every byte value, written by table: snprintf per pixel was a twentieth
+    // of the whole cover render (400x225, 10 spp) on one core.
+    struct digits {
+        char text[256][4];
+        unsigned char size[256];
+        digits() {
+            for (int v = 0; v < 256; ++v) size[v] = (unsigned char)std::snprintf(text[v], sizeof text[v], "%d", v);
+        }
+    };
+    static const digits table;
+    const size_t start = text.size();
+    text.resize(start + bytes.size() / 3 * 12); // at most "255 255 255\n" a pixel
+    char* out = &text[start];
     for (size_t i = 0; i + 2 < bytes.size(); i += 3) {
-        int n = std::snprintf(line, sizeof line, "%d %d %d\n", bytes[i], bytes[i + 1], bytes[i + 2]);
-        text.append(line, size_t(n));
+        for (size_t k = 0; k < 3; ++k) {
+            const unsigned char v = bytes[i + k];
+            std::memcpy(out, table.text[v], 4); // the fourth byte is overwritten next
+            out += table.size[v];
+            *out++ = k < 2 ? ' ' : '\n';
+        }
     }
+    text.resize(size_t(out - text.data()));
     return text;
 }
 
