@@ -6,6 +6,7 @@
 // camera.h.
 
 #include <rtweekend/camera.h>
+#include <rtweekend/engine/sampler.h>
 #include <rtweekend/hittable_list.h>
 
 #include <doctest/doctest.h>
@@ -14,6 +15,7 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace test_camera {
 
@@ -205,6 +207,68 @@ TEST_CASE("camera::frame: pixel spacing and the thin lens") {
             CHECK(miss.length() <= 1e-5 * P.length());
         }
     }
+}
+
+TEST_CASE("camera_frame::sample_rays: a batch's rays are each sample's own, through its pixel point from its lens point") {
+    camera cam = general_camera();
+    cam.defocus_angle = 10;
+    cam.focus_dist = 4;
+    for (sampler_kind kind : {sampler_kind::sobol, sampler_kind::stratified, sampler_kind::independent})
+        for (bool with_time : {false, true}) {
+            const camera_frame f = cam.frame();
+            const int spp = 64;
+            const sampler_plan plan(kind, 3, spp);
+            constexpr int n = sample_lanes::capacity;
+            int x[n], y[n], s[n];
+            pcg32 pick(9, uint64_t(kind));
+            std::vector<pcg32> streams, single_streams, check_streams;
+            for (int k = 0; k < n; ++k) {
+                x[k] = int(pick.next_u32() % uint32_t(f.width));
+                y[k] = int(pick.next_u32() % uint32_t(f.height));
+                s[k] = int(pick.next_u32() % uint32_t(spp));
+                streams.push_back(sample_rng(1, uint64_t(y[k]) * 1000 + uint64_t(x[k]), uint64_t(s[k])));
+            }
+            single_streams = streams;
+            check_streams = streams;
+            std::vector<pixel_sampler> batch, single, check;
+            batch.reserve(n);
+            single.reserve(n);
+            check.reserve(n);
+            pixel_sampler* lanes[n];
+            for (int k = 0; k < n; ++k) {
+                lanes[k] = &batch.emplace_back(plan, x[k], y[k], s[k], streams[size_t(k)]);
+                single.emplace_back(plan, x[k], y[k], s[k], single_streams[size_t(k)]);
+                check.emplace_back(plan, x[k], y[k], s[k], check_streams[size_t(k)]);
+            }
+            ray3f rays[n];
+            f.sample_rays(n, x, y, lanes, spp, with_time, rays);
+            for (int k = 0; k < n; ++k) {
+                // Bit for bit the ray of the sample taken alone.
+                const ray3f one = f.sample_ray(x[k], y[k], spp, single[size_t(k)], with_time);
+                CHECK(rays[k].origin.x == one.origin.x);
+                CHECK(rays[k].origin.y == one.origin.y);
+                CHECK(rays[k].origin.z == one.origin.z);
+                CHECK(rays[k].dir.x == one.dir.x);
+                CHECK(rays[k].dir.y == one.dir.y);
+                CHECK(rays[k].dir.z == one.dir.z);
+                CHECK(rays[k].time == one.time);
+                // And the definition, in double: the sample's numbers in the order the camera
+                // draws them (pixel point, lens point, time), the lens point at radius sqrt(u1)
+                // and angle 2 pi u2 on the disk.
+                const uniform2 jitter = check[size_t(k)].get2d(sample_dimension::camera_pixel);
+                const uniform2 lens = check[size_t(k)].get2d(sample_dimension::camera_lens);
+                const double t = with_time ? check[size_t(k)].get1d(sample_dimension::camera_time) : 0.0;
+                const double radius = std::sqrt(double(lens.u1)), angle = 2 * 3.14159265358979323846 * double(lens.u2);
+                const vec3 origin = radius * std::cos(angle) * f.defocus_disk_u.to_double() +
+                                    radius * std::sin(angle) * f.defocus_disk_v.to_double();
+                const vec3 target = f.pixel00.to_double() + (x[k] + double(jitter.u1) - 0.5) * f.pixel_delta_u.to_double() +
+                                    (y[k] + double(jitter.u2) - 0.5) * f.pixel_delta_v.to_double();
+                const vec3 dir = unit_vector(target - origin);
+                CHECK((rays[k].origin.to_double() - origin).length() < 1e-6);
+                CHECK((rays[k].dir.to_double() - dir).length() < 2e-6);
+                CHECK(double(rays[k].time) == t);
+            }
+        }
 }
 
 namespace {

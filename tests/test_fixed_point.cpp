@@ -189,6 +189,44 @@ TEST_CASE("scheduler: renders of disjoint sample ranges add up to the whole rend
     CHECK_FALSE(test::same_bits(part.img, all.img));
 }
 
+TEST_CASE("scheduler: a batched sample function takes every sample once and makes the per-sample function's image") {
+    const int w = 37, h = 18, spp = 13;
+    for (int adaptive : {0, 1})
+        for (int threads : {1, 3}) {
+            render_settings st = quiet_settings(spp, threads);
+            if (adaptive) {
+                st.adaptive_error = 0.05;
+                st.adaptive_min_samples = 4;
+            }
+            // Samples whose values a pixel's mean shows, with some noise for adaptive sampling.
+            auto value = [](int x, int y, int sample) { return awkward(x, y, sample) * 1e-6f + float((sample * 7 + x) % 5); };
+            const render_result single = render_values(w, h, st, value);
+            std::vector<std::atomic<int>> taken(size_t(w) * h * spp);
+            std::atomic<int> batches{0}, largest{0};
+            const render_result batched = render_samples(w, h, st, [&](sample_batch& b) {
+                ++batches;
+                largest = std::max(largest.load(), b.count);
+                for (int k = 0; k < b.count; ++k) {
+                    CHECK(b.rays[k] == 0);
+                    ++taken[(size_t(b.y[k]) * w + size_t(b.x[k])) * spp + size_t(b.s[k])];
+                    b.rays[k] = 1;
+                    const float v = value(b.x[k], b.y[k], b.s[k]);
+                    b.color[k] = vec3f(v, 0.5f * v, float(b.s[k]));
+                }
+            });
+            CHECK(test::same_bits(single.img, batched.img));
+            CHECK(single.stats.samples == batched.stats.samples);
+            CHECK(batched.stats.rays == batched.stats.samples);
+            uint64_t once = 0, more = 0;
+            for (const auto& t : taken) (t == 1 ? once : more) += t > 0;
+            CHECK(once == batched.stats.samples);
+            CHECK(more == 0);
+            // Batches of several pixels' samples: far fewer calls than samples.
+            CHECK(largest == sample_batch::capacity);
+            CHECK(uint64_t(batches) * 4 < batched.stats.samples);
+        }
+}
+
 TEST_CASE("scheduler: the sample range is checked") {
     render_settings s = quiet_settings(8, 1);
     auto fails = [&](int first, int end) {

@@ -241,6 +241,45 @@ TEST_CASE("render_samples: a stop raised by another thread during a two-thread r
     CHECK(most <= 2 * std::max(fewest, 1)); // the counts differ by the interrupted pass at most
 }
 
+TEST_CASE("render_samples, batched: a stop leaves every pixel the whole of the passes it took part in"
+          * doctest::test_suite("threads")) {
+    // Batches hold several pixels' samples (a pass of 2 samples: 8 pixels a batch); the flag rises
+    // during the batch that holds pixel 100 of tile 0 in the third pass (samples 2 and 3). That
+    // batch, pixels 96..103, finishes whole, and the render stops before the next pixel: on one
+    // thread pixels 0..103 of tile 0 took four samples, every other pixel two.
+    for (int threads : {1, 2}) {
+        render_settings s = one_thread(8);
+        s.threads = threads;
+        std::atomic<bool> stop{false};
+        s.stop = &stop;
+        std::atomic<uint64_t> batches{0};
+        render_result r = render_samples(W, H, s, [&](sample_batch& b) {
+            for (int k = 0; k < b.count; ++k) {
+                b.rays[k] = 1;
+                b.color[k] = vec3f(float(b.s[k]), float(b.x[k]), 1.0f);
+                if (b.s[k] == 2 && b.x[k] == tile0_x(100) && b.y[k] == tile0_y(100) && b.x[k] < 16) stop = true;
+            }
+            ++batches;
+        });
+        CHECK(r.stats.interrupted);
+        uint64_t sum = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const color c = r.img.pixel(x, y);
+                const int n = int(2 * c.x() + 1); // the mean of samples 0..n-1 is (n - 1) / 2
+                CAPTURE(x);
+                CAPTURE(y);
+                CHECK((n == 2 || n == 4));
+                CHECK(c.y() == x);
+                sum += uint64_t(n);
+                if (threads == 1) CHECK(n == (x < 16 && y * 16 + x <= 103 ? 4 : 2));
+            }
+        CHECK(sum == r.stats.samples);
+        CHECK(r.stats.min_pixel_samples == 2);
+        CHECK(r.stats.max_pixel_samples == 4);
+    }
+}
+
 // The milestone apps 02-06 render with their own ray_color through rt::render(cam, world,
 // ray_color), which returns the statistics with the image: the sample counts of an interrupted
 // render are known, as the path tracer's are.

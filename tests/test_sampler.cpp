@@ -126,10 +126,59 @@ TEST_CASE("bit reversal of 32 and 64 bits against a bit-by-bit loop") {
         const uint32_t a = rng.next_u32(), b = rng.next_u32();
         const uint64_t both = uint64_t(a) << 32 | b;
         CHECK(detail::reverse_bits32(a) == reversed(a, 32));
+        CHECK(detail::reverse_bits32_by_shifts(a) == reversed(a, 32));
         CHECK(detail::reverse_bits64(both) == reversed(both, 64));
         // The two halves reversed in place of each other, as get2d uses it.
         CHECK(uint32_t(detail::reverse_bits64(both)) == detail::reverse_bits32(a));
     }
+}
+
+TEST_CASE("sample_lanes: every lane's numbers are its pixel_sampler's, bit for bit, for every sampler") {
+    // Pixels near the origin (the Sobol index in 32 bits: the lanes' loops) and far out (the index
+    // past 32 bits: high_index_hash, lane by lane), and batches of every size.
+    for (sampler_kind kind : all_samplers)
+        for (int spp : {1, 16, 1000})
+            for (int far : {0, 1}) {
+                const sampler_plan plan(kind, 11, spp);
+                pcg32 pick(uint64_t(spp) * 3 + uint64_t(far), 5);
+                for (int count = 1; count <= sample_lanes::capacity; ++count) {
+                    int x[sample_lanes::capacity], y[sample_lanes::capacity], s[sample_lanes::capacity];
+                    for (int k = 0; k < count; ++k) {
+                        x[k] = int(pick.next_u32() % 500) + (far ? 60000 : 0);
+                        y[k] = int(pick.next_u32() % 300) + (far ? 65000 : 0);
+                        s[k] = int(pick.next_u32() % uint32_t(spp));
+                    }
+                    // Two sets of samplers from the same generators' seeds: one asked through the
+                    // lanes, one alone.
+                    std::vector<pcg32> streams, alone_streams;
+                    for (int k = 0; k < count; ++k) {
+                        streams.push_back(sample_rng(7, uint64_t(y[k]) * 1000 + uint64_t(x[k]), uint64_t(s[k])));
+                        alone_streams.push_back(streams.back());
+                    }
+                    std::vector<pixel_sampler> lanes_of, alone;
+                    lanes_of.reserve(size_t(count));
+                    alone.reserve(size_t(count));
+                    for (int k = 0; k < count; ++k) {
+                        lanes_of.emplace_back(plan, x[k], y[k], s[k], streams[size_t(k)]);
+                        alone.emplace_back(plan, x[k], y[k], s[k], alone_streams[size_t(k)]);
+                    }
+                    pixel_sampler* pointers[sample_lanes::capacity];
+                    for (int k = 0; k < count; ++k) pointers[k] = &lanes_of[size_t(k)];
+                    sample_lanes lanes(pointers, count);
+                    float u1[sample_lanes::capacity], u2[sample_lanes::capacity], t[sample_lanes::capacity];
+                    for (uint32_t d : {sample_dimension::camera_pixel, sample_dimension::camera_lens,
+                                       sample_dimension::bounce(3) + sample_dimension::direction}) {
+                        lanes.get2d(d, u1, u2);
+                        for (int k = 0; k < count; ++k) {
+                            const uniform2 p = alone[size_t(k)].get2d(d);
+                            CHECK(u1[k] == p.u1);
+                            CHECK(u2[k] == p.u2);
+                        }
+                    }
+                    lanes.get1d(sample_dimension::camera_time, t);
+                    for (int k = 0; k < count; ++k) CHECK(t[k] == alone[size_t(k)].get1d(sample_dimension::camera_time));
+                }
+            }
 }
 
 TEST_CASE("Sobol: the first points of dimensions 0 and 1 from their definitions") {
@@ -143,13 +192,15 @@ TEST_CASE("Sobol: the first points of dimensions 0 and 1 from their definitions"
         CHECK(double(detail::sobol_dimension1(i)) * 0x1p-32 == d1[i]);
     }
     CHECK(detail::sobol_dimension1(8) == 0xf0000000u); // the fourth column, 15/16
-    // The bit-reversed table the sampler uses agrees with the definition.
+    // The reversed form the sampler computes (a superset sum over bit positions) agrees with the
+    // definition's column by column construction.
     pcg32 g(3);
     for (int i = 0; i < 2000; ++i) {
-        const uint32_t r = g.next_u32();
-        CHECK(detail::reversed_sobol_dimension1(r) ==
-              detail::reverse_bits32(detail::sobol_dimension1(detail::reverse_bits32(r))));
+        const uint32_t index = g.next_u32();
+        CHECK(detail::sobol_dimension1_reversed(index) == detail::reverse_bits32(detail::sobol_dimension1(index)));
     }
+    for (uint32_t bit = 0; bit < 32; ++bit) // each column alone
+        CHECK(detail::sobol_dimension1_reversed(1u << bit) == detail::reverse_bits32(detail::sobol_dimension1(1u << bit)));
     // Owen scrambling permutes: 256 distinct 8-bit prefixes stay 256 distinct ones.
     std::vector<int> seen(256, 0);
     for (uint32_t i = 0; i < 256; ++i) ++seen[detail::owen_scramble(i << 24, 0x1234567u) >> 24];

@@ -316,33 +316,40 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     // Caustics by light tracing (caustic_paths.h): nee with uniform sampling, in a scene that has them.
     const bool caustics = settings.estimator == path_estimator::nee && settings.caustic_paths > 0 &&
                           settings.adaptive_error == 0 && traces_caustics(scene);
+    // A batch of samples: their camera rays together (camera_frame::sample_rays), then each
+    // path on its own.
+    auto trace_batch = [&](auto estimator, sample_batch& b, const caustic_splats* splats) {
+        constexpr path_estimator E = decltype(estimator)::value;
+        std::optional<pixel_sampler> samplers[sample_batch::capacity];
+        pixel_sampler* lanes[sample_batch::capacity];
+        for (int k = 0; k < b.count; ++k) lanes[k] = &samplers[k].emplace(plan, b.x[k], b.y[k], b.s[k], b.rng[k]);
+        ray3f camera_rays[sample_batch::capacity];
+        frame.sample_rays(b.count, b.x, b.y, lanes, spp, with_time, camera_rays);
+        for (int k = 0; k < b.count; ++k) {
+            if (user_code) {
+                // User-written shapes and materials may call random_double(): give them this
+                // sample's generator so the image stays deterministic.
+                detail::scoped_sample_rng guard(b.rng[k]);
+                b.color[k] = detail::trace_path<E, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k]);
+            } else {
+                b.color[k] =
+                    detail::trace_path<E, false>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
+            }
+        }
+    };
     if (caustics) {
         caustic_splats splats(scene, frame, max_depth, settings.seed,
                               settings.caustic_paths * double(frame.width) * double(frame.height));
         return render_samples_with_splats(
             frame.width, frame.height, settings,
-            [&](int x, int y, int s, pcg32& rng, uint64_t& rays) {
-                pixel_sampler ps(plan, x, y, s, rng);
-                ray3f r = frame.sample_ray(x, y, spp, ps, with_time);
-                return detail::trace_path<path_estimator::nee, false>(scene, env, r, max_depth, ps, rays, &splats);
+            [&](sample_batch& b) {
+                trace_batch(std::integral_constant<path_estimator, path_estimator::nee>{}, b, &splats);
             },
             splats, start);
     }
     auto render_with = [&](auto estimator) {
-        constexpr path_estimator E = decltype(estimator)::value;
         return render_samples(
-            frame.width, frame.height, settings,
-            [&](int x, int y, int s, pcg32& rng, uint64_t& rays) {
-                pixel_sampler ps(plan, x, y, s, rng);
-                ray3f r = frame.sample_ray(x, y, spp, ps, with_time);
-                if (user_code) {
-                    // User-written shapes and materials may call random_double(): give them this
-                    // sample's generator so the image stays deterministic.
-                    detail::scoped_sample_rng guard(rng);
-                    return detail::trace_path<E, true>(scene, env, r, max_depth, ps, rays);
-                }
-                return detail::trace_path<E, false>(scene, env, r, max_depth, ps, rays);
-            },
+            frame.width, frame.height, settings, [&](sample_batch& b) { trace_batch(estimator, b, nullptr); },
             start);
     };
     switch (settings.estimator) {

@@ -115,12 +115,35 @@ class pixel_sampler {
     pcg32& rng() { return rng_; }
 
   private:
+    friend class sample_lanes;
     const sampler_plan& plan_;
     uint32_t pixel_hash_;    // stratified: this pixel, hashed
     uint32_t sample_;
     uint32_t reversed_index_; // sobol: the Morton-curve index (below), its bits reversed
     uint64_t high_index_hash_; // sobol: a hash of the index's bits past the 32nd, or 0
     pcg32& rng_;
+};
+
+// One dimension of several samples at once: the camera's numbers of a batch of samples
+// (camera_frame::sample_rays). Lane k is samplers[k]; every lane gets exactly what its
+// pixel_sampler's get1d and get2d give. With Sobol numbers that is integer arithmetic in loops over
+// the lanes, which the compiler turns into SIMD instructions (sixteen samples' pairs for about
+// the instructions of two taken one at a time); other samplers are asked lane by lane.
+class sample_lanes {
+  public:
+    static constexpr int capacity = 16;
+    // All samplers share one plan; count <= capacity.
+    sample_lanes(pixel_sampler* const* samplers, int count);
+    // Fill u[k] (u1[k], u2[k]) for k < count; each array holds `capacity` floats (the lanes past
+    // count are written too, with numbers of no sample).
+    void get1d(uint32_t dimension, float* u);
+    void get2d(uint32_t dimension, float* u1, float* u2);
+
+  private:
+    pixel_sampler* const* samplers_;
+    int count_;
+    bool vectorised_ = false; // Sobol numbers with indices of 32 bits (no high_index_hash)
+    uint32_t reversed_index_[capacity] = {};
 };
 
 // A decision's uniforms as the material contract and the light set draw them (next_float() and
@@ -162,17 +185,9 @@ inline dimension_uniforms light_uniforms(pixel_sampler& s, int depth) {
 
 namespace detail {
 
-// Bit reversal. Where the machine has GFNI (Intel since Ice Lake, AMD since Zen 4), one affine
-// transform over GF(2) reverses the bits of every byte and a byte swap finishes the job: four
-// instructions where the shifts and masks below take fifteen, and the Sobol numbers reverse
-// twice a pair. The shift form serves constant evaluation (the tables below) and other machines.
-inline constexpr uint32_t reverse_bits32(uint32_t v) {
-#if defined(__GFNI__) && defined(__SSE2__) && defined(__GNUC__)
-    if (!__builtin_is_constant_evaluated()) {
-        const __m128i x = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128(int(v)), _mm_set1_epi64x(0x8040201008040201LL), 0);
-        return __builtin_bswap32(uint32_t(_mm_cvtsi128_si32(x)));
-    }
-#endif
+// Bit reversal by shifts and masks (and a byte swap), in any context: the form loops over many
+// values vectorise (sample_lanes).
+inline constexpr uint32_t reverse_bits32_by_shifts(uint32_t v) {
     v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
     v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
     v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
@@ -182,6 +197,20 @@ inline constexpr uint32_t reverse_bits32(uint32_t v) {
     v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
     return (v >> 16) | (v << 16);
 #endif
+}
+
+// One value's bits reversed. Where the machine has GFNI (Intel since Ice Lake, AMD since Zen 4),
+// one affine transform over GF(2) reverses the bits of every byte and a byte swap finishes the
+// job: four instructions where the shifts and masks take fifteen, and a Sobol pair reverses
+// twice.
+inline constexpr uint32_t reverse_bits32(uint32_t v) {
+#if defined(__GFNI__) && defined(__SSE2__) && defined(__GNUC__)
+    if (!__builtin_is_constant_evaluated()) {
+        const __m128i x = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128(int(v)), _mm_set1_epi64x(0x8040201008040201LL), 0);
+        return __builtin_bswap32(uint32_t(_mm_cvtsi128_si32(x)));
+    }
+#endif
+    return reverse_bits32_by_shifts(v);
 }
 
 // Two words' bits reversed at once: reverse_bits64(uint64_t(a) << 32 | b) is
@@ -242,22 +271,20 @@ inline constexpr uint32_t sobol_dimension1(uint32_t index) {
     return v;
 }
 
-// Sobol's dimension 1 in bit-reversed form: reversed_sobol_dimension1(reverse(i)) =
-// reverse(sobol_dimension1(i)). The scrambles below work on reversed bits, so the sampler keeps
-// indices reversed and saves two reversals a pair. The map is linear over GF(2): a table per
-// byte of the argument, built at compile time.
-struct reversed_sobol_dimension1_table {
-    uint32_t bytes[4][256]; // bytes[k][b]: the image of b << 8k
-    constexpr reversed_sobol_dimension1_table() : bytes{} {
-        for (int k = 0; k < 4; ++k)
-            for (uint32_t b = 0; b < 256; ++b)
-                bytes[k][b] = reverse_bits32(sobol_dimension1(reverse_bits32(b << (8 * k))));
-    }
-};
-inline constexpr reversed_sobol_dimension1_table reversed_sobol_dimension1_bytes{};
-inline uint32_t reversed_sobol_dimension1(uint32_t r) {
-    const auto& t = reversed_sobol_dimension1_bytes.bytes;
-    return t[0][r & 0xffu] ^ t[1][(r >> 8) & 0xffu] ^ t[2][(r >> 16) & 0xffu] ^ t[3][r >> 24];
+// Sobol's dimension 1 with its bits reversed, reverse(sobol_dimension1(i)), from the index in
+// natural order. Column i of the generator matrix is row i of Pascal's triangle mod 2, and by
+// Lucas' theorem C(i, j) is odd exactly when the bits of j are a subset of those of i: bit j of the
+// reversed value is the xor of the index bits i whose positions contain j's (as 5-bit numbers).
+// That superset sum takes one shift-and-xor step per bit of a position: five steps, no table, and
+// the same instructions for one sample or for sixteen (sample_lanes below).
+inline constexpr uint32_t sobol_dimension1_reversed(uint32_t index) {
+    uint32_t v = index;
+    v ^= (v >> 1) & 0x55555555u;
+    v ^= (v >> 2) & 0x33333333u;
+    v ^= (v >> 4) & 0x0f0f0f0fu;
+    v ^= (v >> 8) & 0x00ff00ffu;
+    v ^= (v >> 16) & 0x0000ffffu;
+    return v;
 }
 
 inline constexpr float fraction_to_float(uint32_t v) { return static_cast<float>(v >> 8) * 0x1p-24f; }
@@ -376,14 +403,61 @@ inline uniform2 pixel_sampler::get2d(uint32_t dimension) {
         const uint64_t h = plan_.dimension_hash(dimension) ^ high_index_hash_;
         const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_, uint32_t(h));
         const uint32_t scramble0 = uint32_t(h >> 32), scramble1 = scramble0 * 0x9e3779b9u + 0x7f4a7c15u;
-        const uint32_t x = detail::laine_karras_hash(detail::reverse_bits32(reversed), scramble0);
-        const uint32_t y = detail::laine_karras_hash(detail::reversed_sobol_dimension1(reversed), scramble1);
+        // Dimension 0 reversed is the index itself; dimension 1 reversed, sobol_dimension1_reversed.
+        const uint32_t index = detail::reverse_bits32(reversed);
+        const uint32_t x = detail::laine_karras_hash(index, scramble0);
+        const uint32_t y = detail::laine_karras_hash(detail::sobol_dimension1_reversed(index), scramble1);
         // Both scrambled coordinates back to fractions in one reversal: reverse(x) low, reverse(y) high.
         const uint64_t both = detail::reverse_bits64(uint64_t(x) << 32 | y);
         return {detail::fraction_to_float(uint32_t(both)), detail::fraction_to_float(uint32_t(both >> 32))};
     }
     }
     return draw_2d(rng_);
+}
+
+inline sample_lanes::sample_lanes(pixel_sampler* const* samplers, int count) : samplers_(samplers), count_(count) {
+    vectorised_ = count > 0 && samplers[0]->plan_.kind == sampler_kind::sobol;
+    for (int k = 0; k < count; ++k) {
+        vectorised_ = vectorised_ && samplers[k]->high_index_hash_ == 0;
+        reversed_index_[k] = samplers[k]->reversed_index_;
+    }
+}
+
+// Both follow pixel_sampler::get1d and get2d's Sobol branches step by step.
+inline void sample_lanes::get1d(uint32_t dimension, float* u) {
+    if (!vectorised_) {
+        for (int k = 0; k < count_; ++k) u[k] = samplers_[k]->get1d(dimension);
+        return;
+    }
+    const uint64_t h = samplers_[0]->plan_.dimension_hash(dimension);
+    const uint32_t salt = uint32_t(h), scramble = uint32_t(h >> 32);
+    for (int k = 0; k < capacity; ++k) { // all lanes: a fixed trip count vectorises whole
+        const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_[k], salt);
+        const uint32_t v = detail::reverse_bits32_by_shifts(
+            detail::laine_karras_hash(detail::reverse_bits32_by_shifts(reversed), scramble));
+        u[k] = detail::fraction_to_float(v);
+    }
+}
+
+inline void sample_lanes::get2d(uint32_t dimension, float* u1, float* u2) {
+    if (!vectorised_) {
+        for (int k = 0; k < count_; ++k) {
+            const uniform2 p = samplers_[k]->get2d(dimension);
+            u1[k] = p.u1;
+            u2[k] = p.u2;
+        }
+        return;
+    }
+    const uint64_t h = samplers_[0]->plan_.dimension_hash(dimension);
+    const uint32_t salt = uint32_t(h), scramble0 = uint32_t(h >> 32), scramble1 = scramble0 * 0x9e3779b9u + 0x7f4a7c15u;
+    for (int k = 0; k < capacity; ++k) {
+        const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_[k], salt);
+        const uint32_t index = detail::reverse_bits32_by_shifts(reversed);
+        const uint32_t x = detail::laine_karras_hash(index, scramble0);
+        const uint32_t y = detail::laine_karras_hash(detail::sobol_dimension1_reversed(index), scramble1);
+        u1[k] = detail::fraction_to_float(detail::reverse_bits32_by_shifts(x));
+        u2[k] = detail::fraction_to_float(detail::reverse_bits32_by_shifts(y));
+    }
 }
 
 } // namespace rt

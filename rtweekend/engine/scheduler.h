@@ -4,6 +4,12 @@
 //
 //   render_result r = render_samples(width, height, settings,
 //       [&](int x, int y, int s, pcg32& rng, uint64_t& rays) -> vec3f { ... });
+//   render_result r = render_samples(width, height, settings, [&](sample_batch& b) { ... });
+//
+// The second form takes samples in batches of up to sample_batch::capacity (a row of a tile's
+// pixels, or one pixel's samples), so that the integrator can do the work its samples share at
+// once (the path tracer's camera rays: camera_frame::sample_rays); the first is called sample by
+// sample.
 //
 // The image is cut into 16x16 tiles that workers take from an atomic counter, in passes over the
 // whole image (with adaptive sampling: rounds planned by measure/adaptive.h). Sample s of pixel
@@ -40,6 +46,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #if defined(__SSE2__) || defined(_M_X64)
@@ -87,6 +94,18 @@ struct render_result {
     image img;
     render_stats stats;
     pixel_sums sums; // the exact sums behind img, with settings.keep_sums (uniform sampling); else empty
+};
+
+// Samples handed to a batched sample function: sample k < count is sample s[k] of pixel
+// (x[k], y[k]), with its own generator rng[k] (sample_rng); the function sets color[k] and adds
+// the rays it traced for it to rays[k] (which start at 0).
+struct sample_batch {
+    static constexpr int capacity = 16;
+    int count = 0;
+    int x[capacity], y[capacity], s[capacity];
+    pcg32 rng[capacity];
+    vec3f color[capacity];
+    uint64_t rays[capacity];
 };
 
 // Runs sample(x, y, s, rng, rays) -> vec3f for every sample of every pixel of a width x height
@@ -196,18 +215,71 @@ sample_totals run_jobs(int threads, int count, Job&& job) {
     return {rays.load(), samples.load(), nonfinite.load(), saturated.load()};
 }
 
-// Sample s of pixel (x, y), from its own generator; a NaN or infinite sample is dropped and
-// counts as a sample of 0.
+// Whether `sample` takes batches (sample_batch&) rather than one sample at a time.
 template <class SampleFn>
-vec3f take_sample(uint64_t seed, int width, SampleFn& sample, int x, int y, int s, sample_totals& t) {
-    uint64_t pixel = uint64_t(y) * uint64_t(width) + uint64_t(x);
-    pcg32 rng = sample_rng(seed, pixel, uint64_t(s));
-    vec3f c = sample(x, y, s, rng, t.rays);
-    ++t.samples;
-    if (is_finite(c)) return c;
-    ++t.nonfinite;
-    return {0, 0, 0};
+inline constexpr bool takes_batches = std::is_invocable_v<SampleFn&, sample_batch&>;
+
+// The samples of batch b, each from its own generator; a NaN or infinite sample is dropped and
+// counts as a sample of 0. Afterwards b.color and b.rays hold each sample's result and rays.
+template <class SampleFn>
+void take_samples(uint64_t seed, int width, SampleFn& sample, sample_batch& b, sample_totals& t) {
+    for (int k = 0; k < b.count; ++k) {
+        const uint64_t pixel = uint64_t(b.y[k]) * uint64_t(width) + uint64_t(b.x[k]);
+        b.rng[k] = sample_rng(seed, pixel, uint64_t(b.s[k]));
+        b.rays[k] = 0;
+    }
+    if constexpr (takes_batches<SampleFn>) {
+        sample(b);
+    } else {
+        for (int k = 0; k < b.count; ++k) b.color[k] = sample(b.x[k], b.y[k], b.s[k], b.rng[k], b.rays[k]);
+    }
+    for (int k = 0; k < b.count; ++k) {
+        t.rays += b.rays[k];
+        ++t.samples;
+        if (!is_finite(b.color[k])) {
+            ++t.nonfinite;
+            b.color[k] = {0, 0, 0};
+        }
+    }
 }
+
+// Gathers samples into batches and takes them. Pixels are added whole (all the samples the pass
+// or round gives them), so a stop, asked before each pixel, leaves every pixel with all of them
+// or none. A per-sample function gets one pixel's samples per batch, so that it stops exactly
+// there; a batched one gets samples of consecutive pixels together. done(batch, k) sees each
+// sample taken, in order; the caller flushes the last batch.
+template <class SampleFn, class Done>
+class batcher {
+  public:
+    batcher(uint64_t seed, int width, SampleFn& sample, sample_totals& totals, Done done)
+        : seed_(seed), width_(width), sample_(sample), totals_(totals), done_(done) {}
+
+    // The samples [first, last) of pixel (x, y).
+    void add_pixel(int x, int y, int first, int last) {
+        for (int s = first; s < last; ++s) {
+            const int k = batch_.count++;
+            batch_.x[k] = x;
+            batch_.y[k] = y;
+            batch_.s[k] = s;
+            if (batch_.count == sample_batch::capacity) flush();
+        }
+        if (!takes_batches<SampleFn>) flush();
+    }
+    void flush() {
+        if (batch_.count == 0) return;
+        take_samples(seed_, width_, sample_, batch_, totals_);
+        for (int k = 0; k < batch_.count; ++k) done_(batch_, k);
+        batch_.count = 0;
+    }
+
+  private:
+    uint64_t seed_;
+    int width_;
+    SampleFn& sample_;
+    sample_totals& totals_;
+    Done done_;
+    sample_batch batch_;
+};
 
 // Progress on stderr. On a terminal one line updated in place ("\r"), at most four times a second
 // (more is flicker, and each update is a write). In a log (stderr not a terminal) a full line
@@ -351,15 +423,15 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
         const int jobs = int(plan.job_count());
         auto take_round = [&] {
             return run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
+                batcher samples(settings.seed, w, sample, mine, [&](const sample_batch& b, int k) {
+                    plan.add(uint64_t(b.y[k]) * uint64_t(w) + uint64_t(b.x[k]), b.color[k], b.rays[k]);
+                });
                 for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
-                    if (stop_requested(settings)) return;
-                    int x = int(item.pixel % uint64_t(w)), y = int(item.pixel / uint64_t(w));
-                    for (int s = item.first; s < item.first + item.count; ++s) {
-                        uint64_t rays_before = mine.rays;
-                        vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
-                        plan.add(item.pixel, c, mine.rays - rays_before);
-                    }
+                    if (stop_requested(settings)) break;
+                    samples.add_pixel(int(item.pixel % uint64_t(w)), int(item.pixel / uint64_t(w)), item.first,
+                                      item.first + item.count);
                 }
+                samples.flush();
                 progress.show(++jobs_done, jobs);
             });
         };
@@ -468,24 +540,31 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
             const int j = tile_first + job * tile_step;
             int x0 = (j % tiles_x) * tile, y0 = (j / tiles_x) * tile;
             int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
-            for (int y = y0; y < y1; ++y) {
+            // Each pixel's sum, added to in place: a pixel's samples are all in one batch or in
+            // batches taken one after the other, and no other worker touches the tile.
+            batcher samples(settings.seed, w, sample, mine, [&](const sample_batch& b, int k) {
+                const size_t i = (size_t(b.y[k]) * size_t(w) + size_t(b.x[k])) * 3;
+                const vec3f& c = b.color[k];
+                bool clamped = false;
+                // No overflow: at most spp samples of at most `limit` each (fixed_point.h).
+                sums.rgb[i] += to_fixed(c.x, limit, clamped);
+                sums.rgb[i + 1] += to_fixed(c.y, limit, clamped);
+                sums.rgb[i + 2] += to_fixed(c.z, limit, clamped);
+                if (clamped) ++mine.saturated;
+            });
+            bool stopped = false;
+            for (int y = y0; y < y1 && !stopped; ++y) {
                 for (int x = x0; x < x1; ++x) {
-                    if (stop_requested(settings)) return;
-                    const size_t i = size_t(y) * size_t(w) + size_t(x);
-                    int64_t sum[3] = {sums.rgb[i * 3], sums.rgb[i * 3 + 1], sums.rgb[i * 3 + 2]};
-                    for (int s = first; s < last; ++s) {
-                        vec3f c = take_sample(settings.seed, w, sample, x, y, s, mine);
-                        bool clamped = false;
-                        // No overflow: at most spp samples of at most `limit` each (fixed_point.h).
-                        sum[0] += to_fixed(c.x, limit, clamped);
-                        sum[1] += to_fixed(c.y, limit, clamped);
-                        sum[2] += to_fixed(c.z, limit, clamped);
-                        if (clamped) ++mine.saturated;
+                    if (stop_requested(settings)) {
+                        stopped = true;
+                        break;
                     }
-                    for (int k = 0; k < 3; ++k) sums.rgb[i * 3 + size_t(k)] = sum[k];
-                    sums.counts[i] = last - first_sample;
+                    samples.add_pixel(x, y, first, last);
+                    sums.counts[size_t(y) * size_t(w) + size_t(x)] = last - first_sample;
                 }
             }
+            samples.flush();
+            if (stopped) return;
             progress.show(done += int64_t(x1 - x0) * (y1 - y0) * (last - first), total);
         });
         totals.add(t);

@@ -7,6 +7,7 @@
 //   fmadd(a, b, c), fnmadd(a, b, c)           a * b + c and c - a * b, fused where the machine
 //                                             has FMA (written out, so the result does not depend
 //                                             on what the compiler may contract)
+//   -a, round_nearest(a)                      the sign flipped; the nearest integer (ties to even)
 //   maskv m = a < b;                          select(m, a, b), any(m), m & n, m | n
 //   bits(m)                                   one bit per lane, lane 0 in bit 0
 //   first_lanes(n)                            the lanes below n (all of them for n >= width)
@@ -58,6 +59,8 @@ inline maskv operator|(maskv a, maskv b) { return {static_cast<__mmask16>(a.m | 
 inline floatv select(maskv m, floatv a, floatv b) { return _mm512_mask_blend_ps(m.m, b.v, a.v); }
 inline bool any(maskv m) { return m.m != 0; }
 inline unsigned bits(maskv m) { return m.m; }
+inline floatv operator-(floatv a) { return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.v), _mm512_set1_epi32(int(0x80000000u)))); }
+inline floatv round_nearest(floatv a) { return _mm512_maskz_roundscale_ps(0xFFFF, a.v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }
 inline maskv first_lanes(unsigned n) { return {static_cast<__mmask16>(n >= 16 ? 0xFFFFu : (1u << n) - 1u)}; }
@@ -102,6 +105,8 @@ inline maskv operator|(maskv a, maskv b) { return {_mm256_or_ps(a.m, b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm256_blendv_ps(b.v, a.v, m.m); }
 inline bool any(maskv m) { return _mm256_movemask_ps(m.m) != 0; }
 inline unsigned bits(maskv m) { return static_cast<unsigned>(_mm256_movemask_ps(m.m)); }
+inline floatv operator-(floatv a) { return _mm256_xor_ps(a.v, _mm256_set1_ps(-0.0f)); }
+inline floatv round_nearest(floatv a) { return _mm256_round_ps(a.v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
 #if defined(__FMA__)
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm256_fmadd_ps(a.v, b.v, c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm256_fnmadd_ps(a.v, b.v, c.v); }
@@ -150,6 +155,13 @@ inline maskv operator|(maskv a, maskv b) { return {_mm_or_ps(a.m, b.m)}; }
 inline floatv select(maskv m, floatv a, floatv b) { return _mm_or_ps(_mm_and_ps(m.m, a.v), _mm_andnot_ps(m.m, b.v)); }
 inline bool any(maskv m) { return _mm_movemask_ps(m.m) != 0; }
 inline unsigned bits(maskv m) { return static_cast<unsigned>(_mm_movemask_ps(m.m)); }
+inline floatv operator-(floatv a) { return _mm_xor_ps(a.v, _mm_set1_ps(-0.0f)); }
+inline floatv round_nearest(floatv a) { // SSE2 has no rounding instruction: lane by lane
+    alignas(16) float lanes[4];
+    _mm_store_ps(lanes, a.v);
+    for (float& x : lanes) x = std::nearbyint(x);
+    return _mm_load_ps(lanes);
+}
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm_add_ps(_mm_mul_ps(a.v, b.v), c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm_sub_ps(c.v, _mm_mul_ps(a.v, b.v)); }
 inline maskv first_lanes(unsigned n) {
@@ -191,6 +203,8 @@ inline maskv operator|(maskv a, maskv b) { return {a.m || b.m}; }
 inline floatv select(maskv m, floatv a, floatv b) { return m.m ? a : b; }
 inline bool any(maskv m) { return m.m; }
 inline unsigned bits(maskv m) { return m.m ? 1u : 0u; }
+inline floatv operator-(floatv a) { return -a.v; }
+inline floatv round_nearest(floatv a) { return std::nearbyint(a.v); }
 inline floatv fmadd(floatv a, floatv b, floatv c) { return std::fma(a.v, b.v, c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return std::fma(-a.v, b.v, c.v); }
 inline maskv first_lanes(unsigned n) { return {n > 0}; }
