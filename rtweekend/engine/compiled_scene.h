@@ -34,6 +34,7 @@
 #include "user_shape_set.h"
 #include "vec3f.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -101,6 +102,13 @@ class compiled_scene {
 
     // The closest hit with t in (ray.tmin, ray.tmax); false when the ray escapes.
     bool intersect(const ray3f& r, surface_hit& hit) const;
+    // The same for n rays at once (a batch's camera rays): found[k] and hits[k] are what
+    // intersect(rays[k], hits[k]) gives, bit for bit. They walk the BVH in packets of
+    // floatv::width (traverse_packet; spheres tested a sphere for all lanes at once, other shapes
+    // by their kernels ray by ray), unless the scene calls user code: a user's hittable may draw
+    // random numbers in hit(), which must come in its own ray's order, so there each ray walks
+    // alone.
+    void intersect_batch(int n, const ray3f* rays, surface_hit* hits, bool* found) const;
     // The same, skipping back faces of the shapes set_back_face_culling marked (a sphere's back
     // face is the exit point of a ray that starts inside it). User hittables are never culled.
     bool intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const;
@@ -324,6 +332,51 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
     if (found) complete_hit(r, t, best, state, hit);
     if (!unbounded_user_shapes.empty()) found = intersect_unbounded(r, found, hit);
     return found;
+}
+
+inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hit* hits, bool* found) const {
+    constexpr int W = int(floatv::width);
+    if (W == 1 || calls_user_code()) {
+        for (int k = 0; k < n; ++k) found[k] = intersect(rays[k], hits[k]);
+        return;
+    }
+    for (int start = 0; start < n; start += W) {
+        const int count = std::min(W, n - start);
+        const ray3f* r = rays + start;
+        const bvh_packet packet(r, count);
+        alignas(64) float lane[7][W] = {};
+        alignas(64) float t_best[W];
+        for (int k = 0; k < W; ++k) t_best[k] = k < count ? r[k].tmax : 0.0f;
+        for (int k = 0; k < count; ++k) {
+            lane[0][k] = r[k].origin.x, lane[1][k] = r[k].origin.y, lane[2][k] = r[k].origin.z;
+            lane[3][k] = r[k].dir.x, lane[4][k] = r[k].dir.y, lane[5][k] = r[k].dir.z;
+            lane[6][k] = r[k].tmin;
+        }
+        const ray_lanes lanes{floatv::load(lane[0]), floatv::load(lane[1]), floatv::load(lane[2]), floatv::load(lane[3]),
+                              floatv::load(lane[4]), floatv::load(lane[5]), floatv::load(lane[6])};
+        hit_ref best[W];
+        leaf_state state[W];
+        traverse_packet(bvh, packet, t_best, (1u << count) - 1u, [&](uint32_t ref, unsigned active) {
+            const shape_kind kind = single_kind ? *single_kind : bvh_ref::kind(ref);
+            if (kind == shape_kind::sphere) {
+                spheres.intersect_leaf_packet(lanes, bvh_ref::first(ref), bvh_ref::count(ref), active, t_best, best);
+                return;
+            }
+            // Other shapes: each lane's ray through its kind's own kernel.
+            with_shape_kind(kind, [&](auto k) {
+                for (unsigned m = active; m; m &= m - 1) {
+                    const unsigned i = unsigned(__builtin_ctz(m));
+                    leaf_kernel<query::closest, decltype(k)::value>(r[i], ref, t_best[i], best[i], state[i]);
+                }
+            });
+        });
+        for (int k = 0; k < count; ++k) {
+            surface_hit& hit = hits[start + k];
+            hit.user_shape = nullptr;
+            found[start + k] = best[k].index != hit_ref::none;
+            if (found[start + k]) complete_hit(r[k], t_best[k], best[k], state[k], hit);
+        }
+    }
 }
 
 inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const {

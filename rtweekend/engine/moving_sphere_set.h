@@ -94,11 +94,10 @@ RTWEEKEND_FORCE_INLINE bool moving_sphere_set::intersect_leaf(const ray3f& ray, 
         floatv t = select(t0 > tmin, t0, t1);
         if constexpr (Q == query::closest_culled)
             t = select((t0 > tmin) | (floatv::load(&cull[i]) == zero), t, floatv(-1.0f));
-        maskv hits = crosses & (t > tmin) & (t < floatv(t_best));
+        maskv hits = crosses & within_range<Q>(t, tmin, t_best);
         if (!any(hits)) continue;
         if constexpr (Q == query::any) return true;
-        take_closest(hits, t, shape_kind::moving_sphere, i, t_best, best);
-        found = true;
+        found |= take_closest(hits, t, shape_kind::moving_sphere, i, t_best, best);
     }
     return found;
 }

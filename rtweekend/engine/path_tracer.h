@@ -141,9 +141,12 @@ struct vertex_material {
 // normal). Each decision draws from its own dimension of the sampler (sampler.h).
 // With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x, its non-delta
 // lobe sampled -> one or more delta vertices -> a light) count here by the path tracer's share.
+// With `camera_hit`, the camera ray r has been traced already (compiled_scene::intersect_batch):
+// it hit *camera_hit if camera_hit_found.
 template <path_estimator E, bool UserMaterials>
 vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pixel_sampler& ps,
-                 uint64_t& rays, const caustic_splats* caustics = nullptr) {
+                 uint64_t& rays, const caustic_splats* caustics = nullptr, const surface_hit* camera_hit = nullptr,
+                 bool camera_hit_found = false) {
     const light_set& lights = scene.lights;
     const int roulette_start = roulette_depth(lights);
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
@@ -164,8 +167,14 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
     const vec3f lens = r.origin;
     for (int depth = 0; depth < max_depth; ++depth) {
         ++rays;
-        if (!scene.intersect(r, hit))
-            return depth > 0 && env.camera_rays_only ? radiance : radiance + throughput * env.eval(r.dir);
+        bool found;
+        if (depth == 0 && camera_hit) {
+            found = camera_hit_found;
+            if (found) hit = *camera_hit;
+        } else {
+            found = scene.intersect(r, hit);
+        }
+        if (!found) return depth > 0 && env.camera_rays_only ? radiance : radiance + throughput * env.eval(r.dir);
 
         if (hit.user_shape) reported = compile_reported_material(hit.user_record);
         const compiled_material& stored = hit.user_shape ? *reported : scene.materials[hit.material];
@@ -328,14 +337,20 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
         for (int k = 0; k < b.count; ++k) {
             if (user_code) {
                 // User-written shapes and materials may call random_double(): give them this
-                // sample's generator so the image stays deterministic.
+                // sample's generator so the image stays deterministic (and let each path trace
+                // its own camera ray, in its own order).
                 detail::scoped_sample_rng guard(b.rng[k]);
                 b.color[k] = detail::trace_path<E, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k]);
-            } else {
-                b.color[k] =
-                    detail::trace_path<E, false>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
             }
         }
+        if (user_code) return;
+        // The camera rays start together and point nearly the same way: traced as packets.
+        surface_hit camera_hits[sample_batch::capacity];
+        bool camera_found[sample_batch::capacity];
+        scene.intersect_batch(b.count, camera_rays, camera_hits, camera_found);
+        for (int k = 0; k < b.count; ++k)
+            b.color[k] = detail::trace_path<E, false>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats,
+                                                      &camera_hits[k], camera_found[k]);
     };
     if (caustics) {
         caustic_splats splats(scene, frame, max_depth, settings.seed,

@@ -86,7 +86,7 @@ RTWEEKEND_FORCE_INLINE bool quad_set::intersect_leaf(const ray3f& ray, uint32_t 
         floatv nx = load(normal_field, 0), ny = load(normal_field, 1), nz = load(normal_field, 2);
         floatv denom = nx * dx + ny * dy + nz * dz;
         floatv t = (nx * qx + ny * qy + nz * qz) / denom; // parallel: infinite or NaN, rejected below
-        maskv candidates = (t > tmin) & (t < floatv(t_best)) & first_lanes(first + n - i);
+        maskv candidates = within_range<Q>(t, tmin, t_best) & first_lanes(first + n - i);
         // The ray meets the back face when it travels along n: culled quads keep only front hits.
         if constexpr (Q == query::closest_culled)
             candidates = candidates & ((denom < zero) | (floatv::load(&cull[i]) == zero));
@@ -98,8 +98,7 @@ RTWEEKEND_FORCE_INLINE bool quad_set::intersect_leaf(const ray3f& ray, uint32_t 
         maskv hits = candidates & (a >= zero) & (a <= one) & (b >= zero) & (b <= one);
         if (!any(hits)) continue;
         if constexpr (Q == query::any) return true;
-        take_closest(hits, t, shape_kind::quad, i, t_best, best);
-        found = true;
+        found |= take_closest(hits, t, shape_kind::quad, i, t_best, best);
     }
     return found;
 }

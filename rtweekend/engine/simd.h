@@ -4,13 +4,14 @@
 // widest the machine has) and to plain scalar code elsewhere, with the same source.
 //
 //   floatv a = floatv::load(ptr), b(2.0f);    a + b, a * b, a / b, sqrt(a), min(a, b)
-//   fmadd(a, b, c), fnmadd(a, b, c)           a * b + c and c - a * b, fused where the machine
-//                                             has FMA (written out, so the result does not depend
-//                                             on what the compiler may contract)
+//   fmadd(a, b, c), fnmadd(a, b, c),          a * b + c, c - a * b and a * b - c, fused where the
+//   fmsub(a, b, c)                            machine has FMA (written out, so the result does not
+//                                             depend on what the compiler may contract)
 //   -a, round_nearest(a)                      the sign flipped; the nearest integer (ties to even)
 //   maskv m = a < b;                          select(m, a, b), any(m), m & n, m | n
 //   bits(m)                                   one bit per lane, lane 0 in bit 0
 //   first_lanes(n)                            the lanes below n (all of them for n >= width)
+//   lanes_of(b)                               the lanes whose bits are set in b (bits(m)'s inverse)
 //   reduce_min(a)                             the smallest lane
 //
 // Lane counts are a compile-time property: floatv::width.
@@ -63,7 +64,9 @@ inline floatv operator-(floatv a) { return _mm512_castsi512_ps(_mm512_xor_si512(
 inline floatv round_nearest(floatv a) { return _mm512_maskz_roundscale_ps(0xFFFF, a.v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm512_fmadd_ps(a.v, b.v, c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm512_fnmadd_ps(a.v, b.v, c.v); }
+inline floatv fmsub(floatv a, floatv b, floatv c) { return _mm512_fmsub_ps(a.v, b.v, c.v); }
 inline maskv first_lanes(unsigned n) { return {static_cast<__mmask16>(n >= 16 ? 0xFFFFu : (1u << n) - 1u)}; }
+inline maskv lanes_of(unsigned lane_bits) { return {static_cast<__mmask16>(lane_bits)}; }
 inline float reduce_min(floatv a) {
     // Halves folded onto each other, then quarters, pairs and neighbours (the maskz forms, and not
     // _mm512_reduce_min_ps, for the warning above).
@@ -110,10 +113,16 @@ inline floatv round_nearest(floatv a) { return _mm256_round_ps(a.v, _MM_FROUND_T
 #if defined(__FMA__)
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm256_fmadd_ps(a.v, b.v, c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm256_fnmadd_ps(a.v, b.v, c.v); }
+inline floatv fmsub(floatv a, floatv b, floatv c) { return _mm256_fmsub_ps(a.v, b.v, c.v); }
 #else
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm256_add_ps(_mm256_mul_ps(a.v, b.v), c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm256_sub_ps(c.v, _mm256_mul_ps(a.v, b.v)); }
+inline floatv fmsub(floatv a, floatv b, floatv c) { return _mm256_sub_ps(_mm256_mul_ps(a.v, b.v), c.v); }
 #endif
+inline maskv lanes_of(unsigned lane_bits) {
+    const __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return {_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(lane_bits)), lane), lane))};
+}
 inline maskv first_lanes(unsigned n) {
     return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(int(n < 8 ? n : 8)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)))};
 }
@@ -164,8 +173,13 @@ inline floatv round_nearest(floatv a) { // SSE2 has no rounding instruction: lan
 }
 inline floatv fmadd(floatv a, floatv b, floatv c) { return _mm_add_ps(_mm_mul_ps(a.v, b.v), c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return _mm_sub_ps(c.v, _mm_mul_ps(a.v, b.v)); }
+inline floatv fmsub(floatv a, floatv b, floatv c) { return _mm_sub_ps(_mm_mul_ps(a.v, b.v), c.v); }
 inline maskv first_lanes(unsigned n) {
     return {_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_set1_epi32(int(n < 4 ? n : 4)), _mm_setr_epi32(0, 1, 2, 3)))};
+}
+inline maskv lanes_of(unsigned lane_bits) {
+    const __m128i lane = _mm_setr_epi32(1, 2, 4, 8);
+    return {_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(int(lane_bits)), lane), lane))};
 }
 inline float reduce_min(floatv a) {
     __m128 m = _mm_min_ps(a.v, _mm_movehl_ps(a.v, a.v));
@@ -207,7 +221,9 @@ inline floatv operator-(floatv a) { return -a.v; }
 inline floatv round_nearest(floatv a) { return std::nearbyint(a.v); }
 inline floatv fmadd(floatv a, floatv b, floatv c) { return std::fma(a.v, b.v, c.v); }
 inline floatv fnmadd(floatv a, floatv b, floatv c) { return std::fma(-a.v, b.v, c.v); }
+inline floatv fmsub(floatv a, floatv b, floatv c) { return std::fma(a.v, b.v, -c.v); }
 inline maskv first_lanes(unsigned n) { return {n > 0}; }
+inline maskv lanes_of(unsigned lane_bits) { return {(lane_bits & 1u) != 0}; }
 inline float reduce_min(floatv a) { return a.v; }
 
 #endif

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace rt {
@@ -43,6 +44,10 @@ struct sphere_set {
     // Tests spheres [first, first + n) against the ray: see leaf_query.h.
     template <query Q>
     bool intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const;
+    // The same for a packet of rays, one per lane (closest hits): each lane of `lanes` lowers
+    // t_best[lane] and sets best[lane] exactly as intersect_leaf would for its ray alone.
+    void intersect_leaf_packet(const ray_lanes& rays, uint32_t first, uint32_t n, unsigned lanes, float* t_best,
+                               hit_ref* best) const;
 
     // The hit on sphere i at distance t along the ray.
     void complete_hit(const ray3f& ray, float t, uint32_t i, surface_hit& hit) const {
@@ -60,6 +65,37 @@ struct sphere_set {
     size_t bytes() const { return (x.size() * 6 + cull.size()) * sizeof(float) + material.size() * sizeof(uint32_t); }
 };
 
+namespace detail {
+
+// The stable sphere test (sphere.h's, in float), lane by lane, in two steps: first whether each
+// lane's ray line crosses its sphere (C - O = oc, squared radius rr), from the quadratic's
+// h = d.(C - O) and the discriminant taken from the distance to the line; then, for lanes that
+// cross, the distance: the near root from c / q, or the far one from inside. The single-ray
+// kernel has a sphere in each lane, the packet kernel a ray: the same operations in the same
+// order, so both find the same distances.
+struct sphere_crossing {
+    floatv h, disc;
+    RTWEEKEND_FORCE_INLINE sphere_crossing(floatv ocx, floatv ocy, floatv ocz, floatv rr, floatv dx, floatv dy, floatv dz) {
+        h = fmadd(dx, ocx, fmadd(dy, ocy, dz * ocz));
+        const floatv px = fnmadd(h, dx, ocx), py = fnmadd(h, dy, ocy), pz = fnmadd(h, dz, ocz);
+        disc = rr - fmadd(px, px, fmadd(py, py, pz * pz));
+    }
+    maskv crosses() const { return disc >= floatv(0.0f); }
+    // The distance past tmin (the exit from inside); t0 is the nearer root.
+    RTWEEKEND_FORCE_INLINE floatv distance(floatv ocx, floatv ocy, floatv ocz, floatv rr, floatv tmin, floatv& t0) const {
+        const floatv zero(0.0f);
+        const floatv c = fmadd(ocx, ocx, fmadd(ocy, ocy, ocz * ocz)) - rr;
+        const floatv s = sqrt(max(disc, zero));
+        const floatv q = select(h >= zero, h + s, h - s);
+        const floatv ta = c / q;
+        t0 = min(ta, q);
+        const floatv t1 = max(ta, q);
+        return select(t0 > tmin, t0, t1);
+    }
+};
+
+} // namespace detail
+
 template <query Q>
 RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const {
     constexpr size_t W = floatv::width;
@@ -68,30 +104,54 @@ RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_
     const floatv dx(ray.dir.x), dy(ray.dir.y), dz(ray.dir.z);
     bool found = false;
     for (uint32_t i = first; i < first + n; i += W) {
-        floatv ocx = floatv::load(&x[i]) - ox, ocy = floatv::load(&y[i]) - oy, ocz = floatv::load(&z[i]) - oz;
-        floatv rr = floatv::load(&r2[i]);
-        // Compute the quadratic's h = d.(C - O) and its discriminant from the distance to the line.
-        floatv h = fmadd(dx, ocx, fmadd(dy, ocy, dz * ocz));
-        floatv px = fnmadd(h, dx, ocx), py = fnmadd(h, dy, ocy), pz = fnmadd(h, dz, ocz);
-        floatv disc = rr - fmadd(px, px, fmadd(py, py, pz * pz));
-        maskv crosses = (disc >= zero) & first_lanes(first + n - i);
+        const floatv ocx = floatv::load(&x[i]) - ox, ocy = floatv::load(&y[i]) - oy, ocz = floatv::load(&z[i]) - oz;
+        const floatv rr = floatv::load(&r2[i]);
+        const detail::sphere_crossing crossing(ocx, ocy, ocz, rr, dx, dy, dz);
+        const maskv crosses = crossing.crosses() & first_lanes(first + n - i);
         if (!any(crosses)) continue;
-        floatv c = fmadd(ocx, ocx, fmadd(ocy, ocy, ocz * ocz)) - rr;
-        floatv s = sqrt(max(disc, zero));
-        floatv q = select(h >= zero, h + s, h - s);
-        floatv ta = c / q;
-        floatv t0 = min(ta, q), t1 = max(ta, q);
-        floatv t = select(t0 > tmin, t0, t1);
+        floatv t0;
+        floatv t = crossing.distance(ocx, ocy, ocz, rr, tmin, t0);
         // Culled: a ray that starts inside (or past) the sphere only meets its back face.
         if constexpr (Q == query::closest_culled)
             t = select((t0 > tmin) | (floatv::load(&cull[i]) == zero), t, floatv(-1.0f));
-        maskv hits = crosses & (t > tmin) & (t < floatv(t_best));
+        maskv hits = crosses & within_range<Q>(t, tmin, t_best);
         if (!any(hits)) continue;
         if constexpr (Q == query::any) return true;
-        take_closest(hits, t, shape_kind::sphere, i, t_best, best);
-        found = true;
+        found |= take_closest(hits, t, shape_kind::sphere, i, t_best, best);
     }
     return found;
+}
+
+RTWEEKEND_FORCE_INLINE void sphere_set::intersect_leaf_packet(const ray_lanes& rays, uint32_t first, uint32_t n,
+                                                              unsigned lanes, float* t_best, hit_ref* best) const {
+    // Each lane's nearest sphere of the leaf within (tmin, t_best], the first at one distance, as
+    // intersect_leaf's take_closest finds it for one ray; then whether it beats the lane's best.
+    const maskv active = lanes_of(lanes);
+    const floatv limit = floatv::load(t_best);
+    floatv nearest_t(std::numeric_limits<float>::infinity()), nearest_i(-1.0f);
+    for (uint32_t i = first; i < first + n; ++i) {
+        const floatv ocx = floatv(x[i]) - rays.ox, ocy = floatv(y[i]) - rays.oy, ocz = floatv(z[i]) - rays.oz;
+        const floatv rr(r2[i]);
+        const detail::sphere_crossing crossing(ocx, ocy, ocz, rr, rays.dx, rays.dy, rays.dz);
+        const maskv crosses = crossing.crosses() & active;
+        if (!any(crosses)) continue;
+        floatv t0;
+        const floatv t = crossing.distance(ocx, ocy, ocz, rr, rays.tmin, t0);
+        const maskv nearer = crosses & (t > rays.tmin) & (t <= limit) & (t < nearest_t);
+        nearest_t = select(nearer, t, nearest_t);
+        nearest_i = select(nearer, floatv(float(i - first)), nearest_i); // exact: below 16
+    }
+    alignas(64) float leaf_t[floatv::width], leaf_i[floatv::width];
+    nearest_t.store(leaf_t);
+    nearest_i.store(leaf_i);
+    for (unsigned m = lanes; m; m &= m - 1) {
+        const unsigned k = unsigned(__builtin_ctz(m));
+        if (leaf_i[k] < 0) continue;
+        const uint32_t index = first + uint32_t(leaf_i[k]);
+        if (!beats(leaf_t[k], shape_kind::sphere, index, t_best[k], best[k])) continue;
+        t_best[k] = leaf_t[k];
+        best[k] = {shape_kind::sphere, index};
+    }
 }
 
 } // namespace rt

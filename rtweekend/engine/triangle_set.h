@@ -147,11 +147,10 @@ RTWEEKEND_FORCE_INLINE bool triangle_set::intersect_leaf(const ray3f& ray, const
         // The determinant is positive exactly when the ray meets the front face (the side the
         // counter-clockwise normal points to): culled triangles keep only those hits.
         if constexpr (Q == query::closest_culled) candidates = candidates & ((det * floatv::load(&cull[i])) >= zero);
-        maskv hits = candidates & (t > tmin) & (t < floatv(t_best));
+        maskv hits = candidates & within_range<Q>(t, tmin, t_best);
         if (!any(hits)) continue;
         if constexpr (Q == query::any) return true;
-        take_closest(hits, t, shape_kind::triangle, i, t_best, best);
-        found = true;
+        found |= take_closest(hits, t, shape_kind::triangle, i, t_best, best);
     }
     return found;
 }
