@@ -136,23 +136,46 @@ struct vertex_material {
     }
 };
 
-// One path from the camera, estimated with E: the radiance it carries. Materials see the shading
-// normal (a smooth mesh's interpolated one, folded as vertex_material says; else the geometric
-// normal). Each decision draws from its own dimension of the sampler (sampler.h).
-// With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x, its non-delta
-// lobe sampled -> one or more delta vertices -> a light) count here by the path tracer's share.
-// With `camera_hit`, the camera ray r has been traced already (compiled_scene::intersect_batch):
-// it hit *camera_hit if camera_hit_found.
+// One path from the camera, estimated with E, taken a bounce at a time: ray() is the ray to trace
+// next, advance(found, hit) takes what it met, and radiance_so_far() is what the path carries,
+// all of it once done().
+// Materials see the shading normal (a smooth mesh's interpolated one, folded as vertex_material
+// says; else the geometric normal). Each decision draws from its own dimension of the sampler
+// (sampler.h). With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x,
+// its non-delta lobe sampled -> one or more delta vertices -> a light) count here by the path
+// tracer's share.
+//
+// The path tracer advances a batch's paths side by side, a bounce of each in turn: their rays
+// are traced together (as packets, compiled_scene::intersect_batch), and the processor overlaps
+// one path's steps with another's where a single path would wait on each of its own in turn.
 template <path_estimator E, bool UserMaterials>
-vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, int max_depth, pixel_sampler& ps,
-                 uint64_t& rays, const caustic_splats* caustics = nullptr, const surface_hit* camera_hit = nullptr,
-                 bool camera_hit_found = false) {
-    const light_set& lights = scene.lights;
-    const int roulette_start = roulette_depth(lights);
+class camera_path {
+  public:
+    camera_path(const compiled_scene& scene, const environment& env, const ray3f& camera_ray, int max_depth,
+                pixel_sampler& ps, uint64_t& rays, const caustic_splats* caustics = nullptr)
+        : scene(scene), env(env), lights(scene.lights), roulette_start(roulette_depth(scene.lights)),
+          max_depth(max_depth), ps(ps), rays(rays), caustics(caustics), r(camera_ray), lens(camera_ray.origin),
+          done_(max_depth <= 0) {}
+
+    bool done() const { return done_; }
+    const ray3f& ray() const { return r; }
+    const vec3f& radiance_so_far() const { return radiance; }
+    // One bounce: ray() hit `hit` if `found`, else it left the scene.
+    void advance(bool found, const surface_hit& hit);
+
+  private:
+    void finish() { done_ = true; }
+
+    const compiled_scene& scene;
+    const environment& env;
+    const light_set& lights;
+    const int roulette_start, max_depth;
+    pixel_sampler& ps;
+    uint64_t& rays;
+    const caustic_splats* caustics;
+    ray3f r;
+    int depth = 0;
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
-    surface_hit hit;
-    std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
-    compiled_material looked_up;                // a textured material with its colour at the hit
     // The vertex the ray left from, for weighing an emitter it hits against light sampling there:
     // its position and the density its material drew the ray with. A camera ray, a ray after a
     // delta lobe, and every ray of the bsdf and mixture estimators count emission in full.
@@ -164,146 +187,160 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, ray3f r, i
     // x itself, whose camera density weighs the two (asked only of the paths that end on a light).
     enum class caustic_state : uint8_t { none, at_x, past_delta } caustic = caustic_state::none;
     vec3f x_p, x_normal;
-    const vec3f lens = r.origin;
-    for (int depth = 0; depth < max_depth; ++depth) {
-        ++rays;
-        bool found;
-        if (depth == 0 && camera_hit) {
-            found = camera_hit_found;
-            if (found) hit = *camera_hit;
-        } else {
-            found = scene.intersect(r, hit);
-        }
-        if (!found) return depth > 0 && env.camera_rays_only ? radiance : radiance + throughput * env.eval(r.dir);
+    const vec3f lens;
+    bool done_;
+};
 
-        if (hit.user_shape) reported = compile_reported_material(hit.user_record);
-        const compiled_material& stored = hit.user_shape ? *reported : scene.materials[hit.material];
-        // A textured material is asked as a copy holding the texture's colour at this hit; an
-        // untextured one pays only this test.
-        if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
-        const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
-        // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
-        // inside it (directions are unit).
-        if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
-        const shading_point sp{hit.shading_normal, hit.front_face};
-        const vec3f wo = -r.dir;
-
-        if (m.emits()) {
-            const vec3f le = m.emitted(wo, sp);
-            float weight = 1;
-            if (E == path_estimator::nee && !count_emission_fully && !is_black(le)) {
-                // Light sampling at the last vertex could have drawn this point too: weigh the two
-                // strategies by the power heuristic (Veach 1997, ch. 9).
-                const uint32_t l = lights.light_at(hit.kind, hit.index);
-                if (l != light_set::none) {
-                    const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
-                    weight = power_heuristic(last_pdf, lights.pdf(l, last_p, hit.p, outward));
-                }
-            }
-            if (caustic == caustic_state::past_delta) {
-                // Light tracing finds this path too: the path tracer's share of it.
-                const uint32_t l = lights.light_at(hit.kind, hit.index);
-                if (l != light_set::none)
-                    weight *= caustics->camera_path_weight(l, caustics->camera_density(x_p, lens, x_normal));
-            }
-            radiance += throughput * le * weight;
-        }
-        if (m.kind == material_kind::diffuse_light) return radiance; // emitters scatter nothing
-
-        // A user's material: its own emission, counted in full (it is not light-sampled), then
-        // its scatter(), asked once.
-        std::optional<user_material_hit> user;
-        if (UserMaterials && m.kind == material_kind::user) {
-            user.emplace(scene, *m.source, r, hit);
-            radiance += throughput * user->emitted();
-            if (!user->scatter()) return radiance;
-        }
-        const bool smooth = hit.smooth_shaded();
-        const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
-                                                smooth && m.kind != material_kind::isotropic};
-        const bool has_density = vm.has_density();
-        // A constant_medium's scattering point (a user shape's hit with the isotropic phase
-        // function) is inside the fog, not on a surface: its rays start at the point itself.
-        // Pushed off along the medium's arbitrary normal (1, 0, 0) as a surface point is, by 256
-        // float ulps of x, its rays would start beside it for no reason.
-        const bool in_volume = hit.user_shape && m.kind == material_kind::isotropic;
-
-        // A light sample's contribution, if its shadow ray is clear: f Le / pdf, weighed by the
-        // power heuristic against material sampling (a point light has no rival strategy).
-        auto add_light_sample = [&](const light_choice& lc) {
-            vec3f le = lc.radiance; // a textured light's: looked up at the sampled point
-            if (lc.texture != no_texture && !is_black(le)) le = textured_light_radiance(scene, lc);
-            if (is_black(le)) return;
-            const vec3f f = vm.eval(lc.wi);
-            if (is_black(f)) return;
-            ++rays;
-            if (scene.occluded(shadow_ray(hit, lc, in_volume))) return;
-            const float weight = !lc.delta ? power_heuristic(lc.pdf, vm.pdf(lc.wi)) : 1.0f;
-            radiance += throughput * f * le * (weight / lc.pdf);
-        };
-
-        // Next-event estimation: a point on a light, and a shadow ray to it.
-        if (E == path_estimator::nee && !lights.empty() && has_density) {
-            light_choice lc;
-            dimension_uniforms u = light_uniforms(ps, depth);
-            if (lights.sample(hit.p, u, lc)) add_light_sample(lc);
-        }
-        // The mixture below covers area lights only; a point light, which no direction can hit,
-        // is sampled on its own (next-event estimation without a second strategy to weigh).
-        if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
-            light_choice lc;
-            dimension_uniforms u = light_uniforms(ps, depth);
-            if (lights.sample_point(hit.p, u, lc)) add_light_sample(lc);
-        }
-
-        material_sample s;
-        dimension_uniforms material_u = material_uniforms(ps, depth);
-        if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
-            // Book 3's one-sample mixture: the direction comes from the lights or from the
-            // material, half the time each, and is weighed by the mixture of both densities.
-            if (ps.get1d(sample_dimension::bounce(depth) + sample_dimension::strategy) < 0.5f) {
-                light_choice lc;
-                dimension_uniforms u = light_uniforms(ps, depth);
-                if (!lights.sample_area(hit.p, u, lc)) return radiance;
-                s.wi = lc.wi;
-                s.sampled = non_delta_lobe;
-            } else {
-                if (!vm.sample(material_u, s)) return radiance;
-                if (s.is_delta()) s.value *= 2.0f; // chosen half as often as the material alone would
-            }
-            if (!s.is_delta()) {
-                const vec3f f = vm.eval(s.wi);
-                const float pdf = 0.5f * lights.area_pdf_along(hit.p, s.wi) + 0.5f * vm.pdf(s.wi);
-                if (is_black(f) || !(pdf > 0)) return radiance;
-                s.value = f / pdf;
-            }
-        } else if (!vm.sample(material_u, s)) {
-            return radiance;
-        }
-        throughput *= s.value;
-        if (caustics) {
-            const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
-            if (depth == 0) {
-                caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
-                x_p = hit.p;
-                x_normal = hit.normal;
-            } else if (caustic != caustic_state::none)
-                caustic = plain && s.is_delta() ? caustic_state::past_delta : caustic_state::none;
-        }
-        count_emission_fully = E != path_estimator::nee || s.is_delta();
-        last_p = hit.p;
-        last_pdf = s.pdf;
-
-        if (E == path_estimator::nee && depth >= roulette_start) {
-            const float q = max_component(throughput) * (1.0f / roulette_weight);
-            if (q < 1.0f) {
-                if (!(ps.get1d(sample_dimension::bounce(depth) + sample_dimension::roulette) < q)) return radiance;
-                throughput *= 1.0f / q;
-            }
-        }
-        r = spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity(), in_volume);
+template <path_estimator E, bool UserMaterials>
+void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) {
+    ++rays;
+    if (!found) {
+        if (!(depth > 0 && env.camera_rays_only)) radiance += throughput * env.eval(r.dir);
+        return finish();
     }
-    return radiance; // the book: no more light is gathered past the bounce limit
+    std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
+    compiled_material looked_up;                // a textured material with its colour at the hit
+    if (hit.user_shape) reported = compile_reported_material(hit.user_record);
+    const compiled_material& stored = hit.user_shape ? *reported : scene.materials[hit.material];
+    // A textured material is asked as a copy holding the texture's colour at this hit; an
+    // untextured one pays only this test.
+    if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
+    const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
+    // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
+    // inside it (directions are unit).
+    if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+    const shading_point sp{hit.shading_normal, hit.front_face};
+    const vec3f wo = -r.dir;
+
+    if (m.emits()) {
+        const vec3f le = m.emitted(wo, sp);
+        float weight = 1;
+        if (E == path_estimator::nee && !count_emission_fully && !is_black(le)) {
+            // Light sampling at the last vertex could have drawn this point too: weigh the two
+            // strategies by the power heuristic (Veach 1997, ch. 9).
+            const uint32_t l = lights.light_at(hit.kind, hit.index);
+            if (l != light_set::none) {
+                const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
+                weight = power_heuristic(last_pdf, lights.pdf(l, last_p, hit.p, outward));
+            }
+        }
+        if (caustic == caustic_state::past_delta) {
+            // Light tracing finds this path too: the path tracer's share of it.
+            const uint32_t l = lights.light_at(hit.kind, hit.index);
+            if (l != light_set::none)
+                weight *= caustics->camera_path_weight(l, caustics->camera_density(x_p, lens, x_normal));
+        }
+        radiance += throughput * le * weight;
+    }
+    if (m.kind == material_kind::diffuse_light) return finish(); // emitters scatter nothing
+
+    // A user's material: its own emission, counted in full (it is not light-sampled), then
+    // its scatter(), asked once.
+    std::optional<user_material_hit> user;
+    if (UserMaterials && m.kind == material_kind::user) {
+        user.emplace(scene, *m.source, r, hit);
+        radiance += throughput * user->emitted();
+        if (!user->scatter()) return finish();
+    }
+    const bool smooth = hit.smooth_shaded();
+    const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
+                                            smooth && m.kind != material_kind::isotropic};
+    const bool has_density = vm.has_density();
+    // A constant_medium's scattering point (a user shape's hit with the isotropic phase
+    // function) is inside the fog, not on a surface: its rays start at the point itself.
+    // Pushed off along the medium's arbitrary normal (1, 0, 0) as a surface point is, by 256
+    // float ulps of x, its rays would start beside it for no reason.
+    const bool in_volume = hit.user_shape && m.kind == material_kind::isotropic;
+
+    // A light sample's contribution, if its shadow ray is clear: f Le / pdf, weighed by the
+    // power heuristic against material sampling (a point light has no rival strategy).
+    auto add_light_sample = [&](const light_choice& lc) {
+        vec3f le = lc.radiance; // a textured light's: looked up at the sampled point
+        if (lc.texture != no_texture && !is_black(le)) le = textured_light_radiance(scene, lc);
+        if (is_black(le)) return;
+        const vec3f f = vm.eval(lc.wi);
+        if (is_black(f)) return;
+        ++rays;
+        if (scene.occluded(shadow_ray(hit, lc, in_volume))) return;
+        const float weight = !lc.delta ? power_heuristic(lc.pdf, vm.pdf(lc.wi)) : 1.0f;
+        radiance += throughput * f * le * (weight / lc.pdf);
+    };
+
+    // Next-event estimation: a point on a light, and a shadow ray to it.
+    if (E == path_estimator::nee && !lights.empty() && has_density) {
+        light_choice lc;
+        dimension_uniforms u = light_uniforms(ps, depth);
+        if (lights.sample(hit.p, u, lc)) add_light_sample(lc);
+    }
+    // The mixture below covers area lights only; a point light, which no direction can hit,
+    // is sampled on its own (next-event estimation without a second strategy to weigh).
+    if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
+        light_choice lc;
+        dimension_uniforms u = light_uniforms(ps, depth);
+        if (lights.sample_point(hit.p, u, lc)) add_light_sample(lc);
+    }
+
+    material_sample s;
+    dimension_uniforms material_u = material_uniforms(ps, depth);
+    if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
+        // Book 3's one-sample mixture: the direction comes from the lights or from the
+        // material, half the time each, and is weighed by the mixture of both densities.
+        if (ps.get1d(sample_dimension::bounce(depth) + sample_dimension::strategy) < 0.5f) {
+            light_choice lc;
+            dimension_uniforms u = light_uniforms(ps, depth);
+            if (!lights.sample_area(hit.p, u, lc)) return finish();
+            s.wi = lc.wi;
+            s.sampled = non_delta_lobe;
+        } else {
+            if (!vm.sample(material_u, s)) return finish();
+            if (s.is_delta()) s.value *= 2.0f; // chosen half as often as the material alone would
+        }
+        if (!s.is_delta()) {
+            const vec3f f = vm.eval(s.wi);
+            const float pdf = 0.5f * lights.area_pdf_along(hit.p, s.wi) + 0.5f * vm.pdf(s.wi);
+            if (is_black(f) || !(pdf > 0)) return finish();
+            s.value = f / pdf;
+        }
+    } else if (!vm.sample(material_u, s)) {
+        return finish();
+    }
+    throughput *= s.value;
+    if (caustics) {
+        const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
+        if (depth == 0) {
+            caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
+            x_p = hit.p;
+            x_normal = hit.normal;
+        } else if (caustic != caustic_state::none)
+            caustic = plain && s.is_delta() ? caustic_state::past_delta : caustic_state::none;
+    }
+    count_emission_fully = E != path_estimator::nee || s.is_delta();
+    last_p = hit.p;
+    last_pdf = s.pdf;
+
+    if (E == path_estimator::nee && depth >= roulette_start) {
+        const float q = max_component(throughput) * (1.0f / roulette_weight);
+        if (q < 1.0f) {
+            if (!(ps.get1d(sample_dimension::bounce(depth) + sample_dimension::roulette) < q)) return finish();
+            throughput *= 1.0f / q;
+        }
+    }
+    r = spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity(), in_volume);
+    // The book: no more light is gathered past the bounce limit.
+    if (++depth >= max_depth) finish();
+}
+
+// One path from start to end: the radiance it carries.
+template <path_estimator E, bool UserMaterials>
+vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3f& r, int max_depth, pixel_sampler& ps,
+                 uint64_t& rays, const caustic_splats* caustics = nullptr) {
+    camera_path<E, UserMaterials> path(scene, env, r, max_depth, ps, rays, caustics);
+    surface_hit hit;
+    while (!path.done()) {
+        const bool found = scene.intersect(path.ray(), hit);
+        path.advance(found, hit);
+    }
+    return path.radiance_so_far();
 }
 
 } // namespace detail
@@ -334,23 +371,40 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
         for (int k = 0; k < b.count; ++k) lanes[k] = &samplers[k].emplace(plan, b.x[k], b.y[k], b.s[k], b.rng[k]);
         ray3f camera_rays[sample_batch::capacity];
         frame.sample_rays(b.count, b.x, b.y, lanes, spp, with_time, camera_rays);
-        for (int k = 0; k < b.count; ++k) {
-            if (user_code) {
-                // User-written shapes and materials may call random_double(): give them this
-                // sample's generator so the image stays deterministic (and let each path trace
-                // its own camera ray, in its own order).
+        if (user_code) {
+            // User-written shapes and materials may call random_double(): give them this sample's
+            // generator so the image stays deterministic, and let each path draw in its own order,
+            // one path after another.
+            for (int k = 0; k < b.count; ++k) {
                 detail::scoped_sample_rng guard(b.rng[k]);
                 b.color[k] = detail::trace_path<E, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k]);
             }
+            return;
         }
-        if (user_code) return;
-        // The camera rays start together and point nearly the same way: traced as packets.
-        surface_hit camera_hits[sample_batch::capacity];
-        bool camera_found[sample_batch::capacity];
-        scene.intersect_batch(b.count, camera_rays, camera_hits, camera_found);
+        // The paths side by side, a bounce of each in turn (camera_path), their rays traced
+        // together (as packets: the camera rays start together and point nearly the same way;
+        // later bounces' rays less so, but the walk through the top of the tree, which most of
+        // them share, is paid once, and the processor overlaps the rays' work).
+        std::optional<detail::camera_path<E, false>> paths[sample_batch::capacity];
+        for (int k = 0; k < b.count; ++k) paths[k].emplace(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
+        int live[sample_batch::capacity], n = 0;
         for (int k = 0; k < b.count; ++k)
-            b.color[k] = detail::trace_path<E, false>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats,
-                                                      &camera_hits[k], camera_found[k]);
+            if (!paths[k]->done()) live[n++] = k;
+        ray3f next[sample_batch::capacity];
+        surface_hit hits[sample_batch::capacity];
+        bool found[sample_batch::capacity];
+        while (n > 0) {
+            for (int i = 0; i < n; ++i) next[i] = paths[live[i]]->ray();
+            scene.intersect_batch(n, next, hits, found);
+            int still = 0;
+            for (int i = 0; i < n; ++i) {
+                detail::camera_path<E, false>& path = *paths[live[i]];
+                path.advance(found[i], hits[i]);
+                if (!path.done()) live[still++] = live[i];
+            }
+            n = still;
+        }
+        for (int k = 0; k < b.count; ++k) b.color[k] = paths[k]->radiance_so_far();
     };
     if (caustics) {
         caustic_splats splats(scene, frame, max_depth, settings.seed,
