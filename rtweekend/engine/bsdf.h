@@ -197,7 +197,7 @@ inline vec3f beer_transmittance(const vec3f& sigma, float d) {
     return {std::exp(-sigma.x * d), std::exp(-sigma.y * d), std::exp(-sigma.z * d)};
 }
 
-inline float max_component(const vec3f& v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
+inline float max_component(const vec3f& v) { return fmax_inline(v.x, fmax_inline(v.y, v.z)); }
 
 // The density of the directions of the book's fuzzy metal, w = normalize(m + f B) with m the unit
 // mirror direction and B uniform in the unit ball, f <= 1. m + f B is uniform in the ball of
@@ -271,7 +271,7 @@ struct half_vector {
     vec3f h;
     float cos_h = 0, wo_h = 0; // h.n and wo.h
     half_vector(const vec3f& wo, const vec3f& wi, const vec3f& n) : h(normalize(wo + wi)) {
-        cos_h = std::fmax(dot(h, n), 0.0f);
+        cos_h = fmax_inline(dot(h, n), 0.0f);
         wo_h = dot(wo, h);
     }
 };
@@ -284,7 +284,7 @@ inline float blinn_phong_lobe(const vec3f& wo, const vec3f& wi, const vec3f& n, 
     const detail::half_vector hv(wo, wi, n);
     if (!(hv.wo_h > 0)) return 0;
     const float d = (exponent + 1) * (1.0f / (8.0f * pi_f)) * std::pow(hv.cos_h, exponent);
-    return d * cos_i / (hv.wo_h * std::fmax(cos_i, cos_o));
+    return d * cos_i / (hv.wo_h * fmax_inline(cos_i, cos_o));
 }
 
 inline float blinn_phong_lobe_pdf(const vec3f& wo, const vec3f& wi, const vec3f& n, float exponent) {
@@ -326,7 +326,7 @@ bool compiled_material::sample(const vec3f& wo, const shading_point& sp, Uniform
         const auto [u1, u2] = draw_2d(u);
         s.wi = sample_cosine_direction(sp.n, u1, u2);
         s.value = diffuse * (1.0f / p_base);
-        s.pdf = p_base * std::fmax(dot(s.wi, sp.n), 0.0f) * (1.0f / pi_f);
+        s.pdf = p_base * fmax_inline(dot(s.wi, sp.n), 0.0f) * (1.0f / pi_f);
         s.sampled = non_delta_lobe;
         return true;
     }
@@ -347,7 +347,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         const auto [u1, u2] = draw_2d(u);
         s.wi = sample_cosine_direction(n, u1, u2);
         s.value = albedo;
-        s.pdf = std::fmax(dot(s.wi, n), 0.0f) * (1.0f / pi_f);
+        s.pdf = fmax_inline(dot(s.wi, n), 0.0f) * (1.0f / pi_f);
         s.sampled = non_delta_lobe;
         return true;
     }
@@ -376,11 +376,11 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         // 1 either way. Restricted to one lobe, that lobe's weight is R or 1 - R.
         const bool schlick = kind == material_kind::dielectric;
         const float ri = sp.front_face ? 1.0f / refraction_index : refraction_index; // n_i / n_t
-        const float cos_theta = std::fmin(-dot(d, n), 1.0f);
+        const float cos_theta = fmin_inline(-dot(d, n), 1.0f);
         float r = 1.0f; // the reflected fraction
         bool cannot_refract;
         if (schlick) {
-            const float sin_theta = std::sqrt(std::fmax(0.0f, 1.0f - cos_theta * cos_theta));
+            const float sin_theta = std::sqrt(fmax_inline(0.0f, 1.0f - cos_theta * cos_theta));
             cannot_refract = ri * sin_theta > 1.0f;
             if (!cannot_refract) r = schlick_reflectance(cos_theta, ri);
         } else {
@@ -428,7 +428,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
     }
     case material_kind::plastic: {
         // The coat's mirror with probability q (delta), else the base, cosine-weighted.
-        const float cos_o = std::fmin(std::fmax(dot(wo, n), 0.0f), 1.0f);
+        const float cos_o = fmin_inline(fmax_inline(dot(wo, n), 0.0f), 1.0f);
         const bool want_coat = (lobes & delta_reflection) != 0, want_base = (lobes & non_delta_lobe) != 0;
         if (!want_coat && !want_base) return false;
         const float q = !want_base ? 1.0f : !want_coat ? 0.0f : coat_probability(cos_o);
@@ -459,7 +459,7 @@ bool compiled_material::sample_lobe(const vec3f& wo, const shading_point& sp, Un
         if (u0 < ps) {
             // cos theta_h = u^(1 / (n + 1)) has density (n + 1) cos^n theta_h sin theta_h d theta.
             const float cos_h = std::pow(u1, 1.0f / (exponent + 1.0f));
-            const float sin_h = std::sqrt(std::fmax(0.0f, 1.0f - cos_h * cos_h));
+            const float sin_h = std::sqrt(fmax_inline(0.0f, 1.0f - cos_h * cos_h));
             vec3f e1, e2;
             frame_across(n, e1, e2);
             const vec3f c = unit_circle(u2);
@@ -492,7 +492,7 @@ inline vec3f compiled_material::eval(const vec3f& wo, const vec3f& wi, const sha
     if (has_diffuse_base()) f += diffuse * (cos_i * (1.0f / pi_f));
     if (is_glossy_metal()) f += albedo * fuzzy_mirror_density(wi, reflect_f(-wo, sp.n), fuzz);
     if (kind == material_kind::plastic) {
-        const float cos_o = std::fmin(std::fmax(dot(wo, sp.n), 0.0f), 1.0f);
+        const float cos_o = fmin_inline(fmax_inline(dot(wo, sp.n), 0.0f), 1.0f);
         f = albedo * (plastic_base_factor(cos_i, cos_o, refraction_index, coat_average) * cos_i * (1.0f / pi_f));
     }
     if (kind == material_kind::blinn_phong)
@@ -505,7 +505,7 @@ inline float compiled_material::pdf(const vec3f& wo, const vec3f& wi, const shad
     const float cos_i = dot(wi, sp.n);
     if (!(cos_i > 0)) return 0;
     if (kind == material_kind::plastic) {
-        const float cos_o = std::fmin(std::fmax(dot(wo, sp.n), 0.0f), 1.0f);
+        const float cos_o = fmin_inline(fmax_inline(dot(wo, sp.n), 0.0f), 1.0f);
         return (1.0f - coat_probability(cos_o)) * cos_i * (1.0f / pi_f); // the coat is a delta lobe
     }
     if (kind == material_kind::blinn_phong) {

@@ -47,12 +47,12 @@ struct box3f {
              -std::numeric_limits<float>::infinity()};
 
     void grow(const vec3f& p) {
-        lo = {std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z)};
-        hi = {std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z)};
+        lo = {fmin_inline(lo.x, p.x), fmin_inline(lo.y, p.y), fmin_inline(lo.z, p.z)};
+        hi = {fmax_inline(hi.x, p.x), fmax_inline(hi.y, p.y), fmax_inline(hi.z, p.z)};
     }
     void grow(const box3f& b) {
-        lo = {std::fmin(lo.x, b.lo.x), std::fmin(lo.y, b.lo.y), std::fmin(lo.z, b.lo.z)};
-        hi = {std::fmax(hi.x, b.hi.x), std::fmax(hi.y, b.hi.y), std::fmax(hi.z, b.hi.z)};
+        lo = {fmin_inline(lo.x, b.lo.x), fmin_inline(lo.y, b.lo.y), fmin_inline(lo.z, b.lo.z)};
+        hi = {fmax_inline(hi.x, b.hi.x), fmax_inline(hi.y, b.hi.y), fmax_inline(hi.z, b.hi.z)};
     }
     bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
     vec3f centre() const { return 0.5f * (lo + hi); }
@@ -471,8 +471,8 @@ inline unsigned intersect_node(const bvh_node8& node, const bvh_ray& r, float tm
     for (int i = 0; i < 8; ++i) {
         float tn = r.tmin, tf = tmax;
         for (int a = 0; a < 3; ++a) {
-            tn = std::fmax(tn, node.bounds[r.near_plane[a]][i] * r.inv[a] - r.origin_inv[a]);
-            tf = std::fmin(tf, node.bounds[r.far_plane[a]][i] * r.inv[a] - r.origin_inv[a]);
+            tn = fmax_inline(tn, node.bounds[r.near_plane[a]][i] * r.inv[a] - r.origin_inv[a]);
+            tf = fmin_inline(tf, node.bounds[r.far_plane[a]][i] * r.inv[a] - r.origin_inv[a]);
         }
         tnear_out[i] = tn;
         if (tn <= tf * bvh_far_scale) mask |= 1u << i;

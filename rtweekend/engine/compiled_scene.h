@@ -198,7 +198,7 @@ bool compiled_scene::intersect_instances(const ray3f& r, uint32_t first, uint32_
         if (!objects[instances.object[i]]->trace<Q>(local, t_local, inner, inner_state)) continue;
         if constexpr (Q == query::any) return true;
         // Back in the scene's distances; rounding must not make a hit farther than t_best.
-        t_best = std::fmin(t_local / scale, t_best);
+        t_best = fmin_inline(t_local / scale, t_best);
         best = {shape_kind::instance, i};
         state.inner = inner;
         state.inner_t = t_local;
@@ -250,7 +250,7 @@ inline void compiled_scene::surface_coordinates(const surface_hit& hit, double& 
     }
     const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
     if (hit.kind == shape_kind::sphere || hit.kind == shape_kind::moving_sphere) {
-        const double theta = std::acos(std::fmax(-1.0, std::fmin(1.0, double(-outward.y))));
+        const double theta = std::acos(fmax_inline(-1.0, fmin_inline(1.0, double(-outward.y))));
         const double phi = std::atan2(double(-outward.z), double(outward.x)) + pi;
         u = phi / (2 * pi);
         v = theta / pi;

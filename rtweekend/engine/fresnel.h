@@ -49,7 +49,7 @@ namespace rt {
 
 namespace detail {
 
-template <class T> T clamp_cosine(T c) { return std::fmin(std::fmax(c, T(0)), T(1)); } // NaN -> 0
+template <class T> T clamp_cosine(T c) { return fmin_inline(fmax_inline(c, T(0)), T(1)); } // NaN -> 0
 
 // Fresnel's equations for a dielectric, divided through by n_incident (E. Hecht, Optics, 5th ed.,
 // section 4.6.2, eqs. 4.42 and 4.43; M. Pharr, W. Jakob, G. Humphreys, Physically Based
@@ -90,7 +90,7 @@ inline double fresnel_conductor(double cos_i, double n, double k) {
     double t3 = c2 * a2_plus_b2 + s2 * s2, t4 = t2 * s2;
     double rp = rs * (t3 - t4) / (t3 + t4);
     // t1 - t2 cancels where R is near 0 (n near 1, k near 0): keep rounding from going negative.
-    return std::fmax(0.0, 0.5 * (rs + rp));
+    return fmax_inline(0.0, 0.5 * (rs + rp));
 }
 
 // In double inside: k^2 of a good conductor squared again (t0 * t0) leaves float's range early.

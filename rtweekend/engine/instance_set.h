@@ -42,7 +42,7 @@ struct affine3f {
     // stretch an error.
     float max_stretch() const {
         float s = 0;
-        for (const auto& row : m) s = std::fmax(s, std::fabs(row[0]) + std::fabs(row[1]) + std::fabs(row[2]));
+        for (const auto& row : m) s = fmax_inline(s, std::fabs(row[0]) + std::fabs(row[1]) + std::fabs(row[2]));
         return s;
     }
 };

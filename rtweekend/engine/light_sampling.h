@@ -160,7 +160,7 @@ inline bool finish_area_sample(const vec3f& p, const vec3f& y, const vec3f& n, f
 // theta_max ~ 3e-4 rad in float).
 inline float sphere_cone_one_minus_cos(float d2, float r) {
     const float sin2_max = r * r / d2;
-    return sin2_max / (1.0f + std::sqrt(std::fmax(0.0f, 1.0f - sin2_max)));
+    return sin2_max / (1.0f + std::sqrt(fmax_inline(0.0f, 1.0f - sin2_max)));
 }
 
 // 1 / x when that is a finite positive density, else 0.
@@ -188,7 +188,7 @@ struct spherical_rectangle {
 // quad_max_condition within it, written without divisions (an overflow reads as ill-conditioned).
 inline bool well_conditioned(const spherical_rectangle& r, float delta_abs_sum) {
     const float z2 = r.z0 * r.z0, k = quad_max_condition;
-    const float xf = std::fmax(std::fabs(r.x0), std::fabs(r.x1)), yf = std::fmax(std::fabs(r.y0), std::fabs(r.y1));
+    const float xf = fmax_inline(std::fabs(r.x0), std::fabs(r.x1)), yf = fmax_inline(std::fabs(r.y0), std::fabs(r.y1));
     return xf * (xf * xf + z2) <= k * z2 * (r.x1 - r.x0) && yf * (yf * yf + z2) <= k * z2 * (r.y1 - r.y0) &&
            delta_abs_sum <= k * r.solid_angle;
 }
@@ -258,8 +258,8 @@ inline void sample_spherical_rectangle(const spherical_rectangle& r, float u1, f
     const float fu = (std::cos(beta) * r.b0 + r.b1) / std::sin(beta);
     // cu: the cosine of the angle of the plane through p that splits off the fraction u1.
     float cu = std::copysign(1.0f, fu) / std::sqrt(fu * fu + r.b0 * r.b0);
-    cu = std::fmin(std::fmax(cu, -1.0f), 1.0f);
-    float xu = -(cu * r.z0) / std::sqrt(std::fmax(0.0f, 1.0f - cu * cu));
+    cu = fmin_inline(fmax_inline(cu, -1.0f), 1.0f);
+    float xu = -(cu * r.z0) / std::sqrt(fmax_inline(0.0f, 1.0f - cu * cu));
     if (!(xu >= r.x0)) xu = r.x0; // also catches the NaN of cu = +-1
     if (xu > r.x1) xu = r.x1;
     // Along that line the solid angle is uniform in the sine of the elevation h.
@@ -268,8 +268,8 @@ inline void sample_spherical_rectangle(const spherical_rectangle& r, float u1, f
     const float h1 = r.y1 / std::sqrt(dd * dd + r.y1 * r.y1);
     const float hv = h0 + u2 * (h1 - h0), hv2 = hv * hv;
     const float yv = hv2 < 1.0f - 1e-6f ? hv * dd / std::sqrt(1.0f - hv2) : r.y1;
-    a = std::fmin(std::fmax(xu - r.x0, 0.0f), r.x1 - r.x0);
-    b = std::fmin(std::fmax(yv - r.y0, 0.0f), r.y1 - r.y0);
+    a = fmin_inline(fmax_inline(xu - r.x0, 0.0f), r.x1 - r.x0);
+    b = fmin_inline(fmax_inline(yv - r.y0, 0.0f), r.y1 - r.y0);
 }
 
 // Whether the quad looks large enough from p for solid-angle sampling to pay (quad_solid_angle_worth).
@@ -380,7 +380,7 @@ inline bool sample_sphere_light(const vec3f& p, const vec3f& c, float r, float u
     //   sin alpha = sin theta cos^2 theta_max / (sin theta_max (cos theta + sin theta_max B)),
     // the second being sin theta (cos theta / sin theta_max - B) with the difference multiplied
     // out: every term is positive, so neither cancels.
-    const float B = std::sqrt(std::fmax(0.0f, 1.0f - std::fmin(1.0f, sin2_theta / sin2_max)));
+    const float B = std::sqrt(fmax_inline(0.0f, 1.0f - fmin_inline(1.0f, sin2_theta / sin2_max)));
     const float cos_alpha = sin2_theta / sin_max + cos_theta * B;
     const float sin_alpha = sin_theta * (1.0f - sin2_max) / (sin_max * (cos_theta + sin_max * B));
     vec3f e1, e2;

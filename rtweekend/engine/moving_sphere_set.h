@@ -37,7 +37,7 @@ struct moving_sphere_set {
         r2.push_back(padding ? -1.0f : radius * radius);
         r.push_back(radius);
         // As sphere_set's: a few ulps of the largest coordinate the centre takes, plus the radius.
-        const float reach = std::fmax(max_abs_component(c0), max_abs_component(c0 + motion));
+        const float reach = fmax_inline(max_abs_component(c0), max_abs_component(c0 + motion));
         offset.push_back(std::ldexp(reach + radius, -21));
         material.push_back(material_index);
     }

@@ -34,7 +34,7 @@ inline vec3f unit_circle(float u) {
 // Uniform on the unit sphere: z uniform on [-1, 1] (Archimedes' hat-box theorem), phi uniform.
 inline vec3f sample_unit_sphere(float u1, float u2) {
     float z = 1.0f - 2.0f * u1;
-    float s = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
+    float s = std::sqrt(fmax_inline(0.0f, 1.0f - z * z));
     vec3f circle = unit_circle(u2);
     return {s * circle.x, s * circle.y, z};
 }

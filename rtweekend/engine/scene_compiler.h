@@ -204,7 +204,7 @@ class scene_compiler {
             const moving_sphere_input& s = moving_spheres_[i];
             // Both ends of the motion, and a few ulps more: the kernel's centre c0 + time * m,
             // in float, may stray that far from the exact line.
-            const double pad = s.r + std::ldexp(std::fmax(max_abs(s.c0), max_abs(s.c1)) + s.r, -20);
+            const double pad = s.r + std::ldexp(fmax_inline(max_abs(s.c0), max_abs(s.c1)) + s.r, -20);
             box3f b;
             for (const vec3& c : {s.c0, s.c1})
                 b.grow({down(c.x() - pad), down(c.y() - pad), down(c.z() - pad)}),
@@ -285,7 +285,7 @@ class scene_compiler {
     // An object's compiler: its shapes go to `object`, its materials to the scene's table.
     scene_compiler(compiled_scene& object, scene_compiler& root) : out_(object), root_(&root) {}
 
-    static double max_abs(const vec3& v) { return std::fmax(std::fabs(v.x()), std::fmax(std::fabs(v.y()), std::fabs(v.z()))); }
+    static double max_abs(const vec3& v) { return fmax_inline(std::fabs(v.x()), fmax_inline(std::fabs(v.y()), std::fabs(v.z()))); }
 
     static bool is_transform(const std::type_info& type) {
         return type == typeid(translate) || type == typeid(rotate_y) || type == typeid(transform) ||
@@ -418,11 +418,11 @@ class scene_compiler {
             for (float y : {b.lo.y, b.hi.y})
                 for (float z : {b.lo.z, b.hi.z}) {
                     const vec3 corner = in.map.point(vec3(x, y, z)) - out_.origin;
-                    for (int c = 0; c < 3; ++c) lo[c] = std::fmin(lo[c], corner[c]), hi[c] = std::fmax(hi[c], corner[c]);
+                    for (int c = 0; c < 3; ++c) lo[c] = fmin_inline(lo[c], corner[c]), hi[c] = fmax_inline(hi[c], corner[c]);
                 }
         if (!(max_abs(lo) < max_float_extent && max_abs(hi) < max_float_extent))
             throw scene_error("an instance is out of single-precision range: it must be within 1e18 of the camera");
-        const double pad = std::ldexp(std::fmax(max_abs(lo), max_abs(hi)), -20);
+        const double pad = std::ldexp(fmax_inline(max_abs(lo), max_abs(hi)), -20);
         box3f out;
         out.lo = {down(lo.x() - pad), down(lo.y() - pad), down(lo.z() - pad)};
         out.hi = {up(hi.x() + pad), up(hi.y() + pad), up(hi.z() + pad)};
@@ -481,7 +481,7 @@ class scene_compiler {
         if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
         const double radius = s.radius() * xf.sphere_scale(); // must_instance saw to it that the map keeps it round
         const vec3 c = xf.point(s.center()) - out_.origin, c1 = xf.point(s.center(1)) - out_.origin;
-        if (!(std::fmax(max_abs(c), max_abs(c1)) + radius < max_float_extent))
+        if (!(fmax_inline(max_abs(c), max_abs(c1)) + radius < max_float_extent))
             throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
                               " is out of single-precision range: its distance from the camera plus its radius must "
                               "be below 1e18");
@@ -497,7 +497,7 @@ class scene_compiler {
         for (const point3* p : {&a, &b, &c}) {
             if (!finite3(*p)) throw scene_error("triangle vertex must be finite, got " + point_text(*p));
             vec3 q = *p - out_.origin;
-            if (!(std::fmax(std::fabs(q.x()), std::fmax(std::fabs(q.y()), std::fabs(q.z()))) < max_float_extent))
+            if (!(fmax_inline(std::fabs(q.x()), fmax_inline(std::fabs(q.y()), std::fabs(q.z()))) < max_float_extent))
                 throw scene_error("triangle vertex " + point_text(*p) +
                                   " is out of single-precision range: it must be within 1e18 of the camera");
         }
@@ -542,7 +542,7 @@ class scene_compiler {
         if (!q.mat()) throw scene_error("quad at " + point_text(q.corner()) + " has no material");
         const vec3 corner = xf.point(q.corner()) - out_.origin, u = xf.vector(q.edge_u()), v = xf.vector(q.edge_v());
         for (const vec3& p : {corner, corner + u, corner + v, corner + u + v})
-            if (!(std::fmax(std::fabs(p.x()), std::fmax(std::fabs(p.y()), std::fabs(p.z()))) < max_float_extent))
+            if (!(fmax_inline(std::fabs(p.x()), fmax_inline(std::fabs(p.y()), std::fabs(p.z()))) < max_float_extent))
                 throw scene_error("quad at " + point_text(q.corner()) +
                                   " is out of single-precision range: it must be within 1e18 of the camera");
         // Zero area in float: no ray could hit it, and its dual vectors would be infinite.

@@ -8,6 +8,14 @@
 
 namespace rt {
 
+// std::fmax and std::fmin as glibc computes them (a NaN loses to a number; of two equal values,
+// zeros of either sign included, the first), as selects the compiler puts inline: GCC compiles
+// std::fmax to a call of the C library's, and the path tracer asked for one in every bounce.
+template <class T>
+constexpr T fmax_inline(T a, T b) { return b > a || a != a ? b : a; }
+template <class T>
+constexpr T fmin_inline(T a, T b) { return b < a || a != a ? b : a; }
+
 struct vec3f {
     float x = 0, y = 0, z = 0;
 
@@ -39,7 +47,7 @@ constexpr vec3f cross(const vec3f& a, const vec3f& b) {
 constexpr float length_squared(const vec3f& v) { return dot(v, v); }
 inline float length(const vec3f& v) { return std::sqrt(dot(v, v)); }
 inline vec3f normalize(const vec3f& v) { return v * (1.0f / length(v)); }
-inline float max_abs_component(const vec3f& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
+inline float max_abs_component(const vec3f& v) { return fmax_inline(std::fabs(v.x), fmax_inline(std::fabs(v.y), std::fabs(v.z))); }
 inline bool is_finite(const vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // The renderer's ray: origin, unit direction, the open parameter range (tmin, tmax), and the

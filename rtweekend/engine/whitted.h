@@ -258,7 +258,7 @@ inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, con
         if (compiled_.occluded(shadow)) continue;
         vec3f E = light.intensity / d2; // irradiance at distance d: I / d^2
         vec3f h = normalize(l + v);
-        float specular = std::pow(std::fmax(0.0f, dot(n, h)), terms.phong_exponent);
+        float specular = std::pow(fmax_inline(0.0f, dot(n, h)), terms.phong_exponent);
         L += E * (pi_f * m.eval(v, l, sp) + specular * terms.specular);
     }
     return L;
