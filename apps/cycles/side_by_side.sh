@@ -33,7 +33,7 @@
 # CYCLES_ARGS (more options for cycles_scene.py, e.g. "--glass schlick"; the cached Cycles
 # references are then the wrong ones: use another OUTDIR), SCENES (which to run: "cover cornell",
 # the default, or one of them).
-# A full run (2 threads, references not cached) takes about an hour; with them cached, about 6 minutes.
+# A full run (2 threads, references not cached) takes an hour or more; with them cached, 6-10 minutes.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
