@@ -230,6 +230,64 @@ TEST_CASE("an area light seen in a mirror lights a Lambertian patch, wide and zo
     }
 }
 
+TEST_CASE("caustics seen indirectly: light tracing and the camera paths alone give the same image") {
+    // A room lit only through a mirror: the light faces up into a mirror ceiling, so that every
+    // path that reaches it ends ... -> mirror -> light, and the whole image is light that light
+    // tracing also finds: seen directly (camera -> wall -> mirror -> light), past an inner
+    // Lambertian vertex (camera -> wall -> mirror -> floor -> mirror -> light) and past the first
+    // vertex (camera -> wall -> floor -> mirror -> light, joined to the sample's own light path).
+    // Without light paths the camera paths find all of it by themselves (no shadow ray reaches
+    // the light's emitting side), so the two images must have the same mean, at any max_depth,
+    // which the joins must respect as the camera paths do.
+    hittable_list world;
+    auto white = make_shared<lambertian>(color(0.7, 0.7, 0.7));
+    world.add(make_shared<quad>(point3(-2, 0, -2), vec3(0, 0, 4), vec3(4, 0, 0), white));                // floor
+    world.add(make_shared<quad>(point3(-2, 0, -2), vec3(0, 3, 0), vec3(0, 0, 4),
+                                make_shared<lambertian>(color(0.5, 0.6, 0.4))));                           // wall
+    world.add(make_shared<quad>(point3(-3, 3, -3), vec3(6, 0, 0), vec3(0, 0, 6), make_shared<metal>(color(0.9, 0.9, 0.9), 0.0)));
+    // Normal u x v = +y: facing the mirror; its back is dark and blocks.
+    world.add(make_shared<quad>(point3(-0.2, 2, -0.75), vec3(0, 0, 1.5), vec3(1.5, 0, 0),
+                                make_shared<diffuse_light>(color(4, 4, 4))));
+    auto image_mean_all = [](const image& img) {
+        double sum = 0;
+        for (int y = 0; y < img.height(); ++y)
+            for (int x = 0; x < img.width(); ++x) {
+                const color c = img.pixel(x, y);
+                sum += c.x() + c.y() + c.z();
+            }
+        return sum / double(3 * img.width() * img.height());
+    };
+    for (int depth : {3, 4, 6, 12}) {
+        double mean[2], standard_error[2];
+        for (int traced = 0; traced < 2; ++traced) {
+            const int seeds = 8;
+            std::vector<double> means;
+            for (int seed = 1; seed <= seeds; ++seed) {
+                // The camera paths alone are the noisier: more samples for them.
+                camera cam = test::test_camera(24, 24, traced ? 64 : 256, depth);
+                cam.lookfrom = point3(3.5, 1.6, 0.8);
+                cam.lookat = point3(-2, 0.8, 0);
+                cam.vfov = 60;
+                cam.background = color(0, 0, 0);
+                cam.caustic_paths = traced ? 1.0 : 0.0;
+                cam.seed = uint64_t(seed + 100 * traced);
+                means.push_back(image_mean_all(render(cam, world).img));
+            }
+            double m = 0, var = 0;
+            for (double x : means) m += x / seeds;
+            for (double x : means) var += (x - m) * (x - m) / (seeds - 1);
+            mean[traced] = m;
+            standard_error[traced] = std::sqrt(var / seeds);
+        }
+        const double both = std::sqrt(standard_error[0] * standard_error[0] + standard_error[1] * standard_error[1]);
+        INFO("max_depth " << depth << ": camera paths alone " << mean[0] << " +- " << standard_error[0]
+                          << ", with light tracing " << mean[1] << " +- " << standard_error[1]);
+        CHECK(mean[0] > 0.01);
+        CHECK(std::fabs(mean[1] - mean[0]) <= 4.5 * both);
+        CHECK(both < 0.01 * mean[0]); // the bound above is not a loose one
+    }
+}
+
 TEST_CASE("caustics traced from the lights: the same image at one and two threads") {
     light_scene s = make_cornell_final();
     camera cam = s.cam;

@@ -222,8 +222,8 @@ namespace {
 
 // The three estimators on one of the light scenes: the same image, pixel by pixel, within the
 // noise each has (estimated from independent renders with different seeds), and the same mean.
-// bsdf finds a small light so rarely that ten renders can miss it in a pixel and so understate
-// that pixel's noise: with bsdf_pixelwise false, bsdf is held to the same mean only.
+// bsdf finds a small light, or a caustic, so rarely that ten renders can miss it in a pixel and
+// so understate that pixel's noise: with bsdf_pixelwise false, bsdf is held to the same mean only.
 void check_estimators_agree(const light_scene& scene, int width, int seeds, int spp, bool bsdf_pixelwise) {
     struct moments {
         std::vector<double> sum, sum2;
@@ -287,8 +287,14 @@ void check_estimators_agree(const light_scene& scene, int width, int seeds, int 
 
 } // namespace
 
+// bsdf's pixels beyond 5 standard errors here are all brighter in nee: caustics of the glass
+// sphere seen indirectly, which bsdf's ten renders mostly miss. Held pixel by pixel it fails
+// with other seeds (seeds 0-9: 6 pixels of 144 beyond, 5 allowed, before light tracing found
+// those caustics for nee; 8 since, nee's own noise being smaller), so it is held to the mean; nee
+// and mixture are compared pixel by pixel, and test_caustic_paths.cpp checks light tracing's
+// share of such caustics against the camera paths alone.
 TEST_CASE("nee, bsdf and mixture converge to the same Cornell box") {
-    check_estimators_agree(make_cornell_final(), 12, 10, 32, true);
+    check_estimators_agree(make_cornell_final(), 12, 10, 32, false);
 }
 
 // The sphere room's light is small and far from its huge walls: next-event estimation there once

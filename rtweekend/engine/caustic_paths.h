@@ -25,8 +25,24 @@
 //     camera -> x (seen directly, sampled by its non-delta part) -> k >= 1 delta vertices -> a light
 // and the shares sum to 1. Both sides stop at the same things: user-written shapes and materials,
 // volumes, smooth-shaded vertices (their folded lobes, path_tracer.h, are not symmetric under
-// reversal) and textured lights; k is at most max_depth - 2, as the path tracer's ray count
-// allows.
+// reversal) and textured lights; the path is at most max_depth rays long, as the path tracer's
+// ray count allows.
+//
+// Caustics seen indirectly. The caustic under book 3's glass sphere lights the room in turn, and
+// the glass shows it again: light -> glass -> floor -> glass -> wall, the floor a Lambertian
+// "inner" vertex between two runs of delta vertices. A light path goes on from such a vertex by
+// its cosine, so the pattern above admits inner vertices, each between runs of delta vertices:
+//     camera -> x -> delta vertices -> (Lambertian -> delta vertices)* -> a light.
+// And a caustic reached past the camera's first vertex, camera -> ... -> v -> x -> delta vertices
+// -> (Lambertian -> delta vertices)* -> a light, v and x with densities, is joined the
+// bidirectional way (Veach 1997, ch. 10, with two or more camera vertices): each camera sample
+// traces a light path of its own (caustic_light_vertices), and each vertex v of the camera path
+// is joined to the points x it reached by a shadow ray. In book 3's Cornell box the first of these
+// held 40 % of the variance the pattern above left, and the second 48 % of what remained then
+// (BENCHMARKS.md, section 13). Since a
+// Lambertian vertex is left by its cosine from either end, the ratio of the two strategies'
+// densities stays the light path starts per unit of the light's area against the path tracer's
+// density at x, whatever the inner vertices (caustic_splats::deep_camera_path_weight).
 //
 // Reversing a delta chain. Mirrors and the exact Fresnel dielectric choose reflection and
 // refraction by the same probability from either end (reflection angles are equal; the exact
@@ -91,6 +107,66 @@ inline float light_path_start_density(const light& l, float pmf) {
     return std::isfinite(density) && density > 0 ? density : 0.0f;
 }
 
+// A box around every built-in shape whose material has a delta lobe (everything, when the scene
+// places instances): a light path whose first ray misses it meets no delta vertex first.
+inline box3f delta_shape_bounds(const compiled_scene& scene) {
+    box3f b;
+    if (scene.instances.count() > 0) {
+        const float inf = std::numeric_limits<float>::infinity();
+        b.grow(vec3f{-inf, -inf, -inf});
+        b.grow(vec3f{inf, inf, inf});
+        return b;
+    }
+    auto delta = [&](uint32_t material) { return scene.materials[material].has_delta_lobe(); };
+    auto ball = [&](const vec3f& c, float r) {
+        b.grow(c - vec3f{r, r, r});
+        b.grow(c + vec3f{r, r, r});
+    };
+    const sphere_set& sp = scene.spheres;
+    for (size_t i = 0; i < sp.count; ++i)
+        if (delta(sp.material[i])) ball({sp.x[i], sp.y[i], sp.z[i]}, sp.r[i]);
+    const moving_sphere_set& ms = scene.moving_spheres;
+    for (size_t i = 0; i < ms.count; ++i)
+        if (delta(ms.material[i])) {
+            ball(ms.center(uint32_t(i), 0.0f), ms.r[i]);
+            ball(ms.center(uint32_t(i), 1.0f), ms.r[i]);
+        }
+    const quad_set& qs = scene.quads;
+    for (size_t i = 0; i < qs.count; ++i)
+        if (delta(qs.material[i])) {
+            const vec3f q = qs.corner(uint32_t(i)), u = qs.edge_u(uint32_t(i)), v = qs.edge_v(uint32_t(i));
+            for (const vec3f& p : {q, q + u, q + v, q + u + v}) b.grow(p);
+        }
+    const triangle_set& ts = scene.triangles;
+    for (size_t i = 0; i < ts.count; ++i)
+        if (delta(ts.material[i]))
+            for (int k = 0; k < 3; ++k)
+                b.grow(vec3f{ts.vertex[3 * k][i], ts.vertex[3 * k + 1][i], ts.vertex[3 * k + 2][i]});
+    if (b.empty()) return b;
+    // Grown by a margin, so that rounding in the slab test below never misses a shape.
+    const vec3f pad = 1e-4f * (b.hi - b.lo) + vec3f{1e-3f, 1e-3f, 1e-3f} +
+                      1e-5f * vec3f{std::fabs(b.lo.x) + std::fabs(b.hi.x), std::fabs(b.lo.y) + std::fabs(b.hi.y),
+                                    std::fabs(b.lo.z) + std::fabs(b.hi.z)};
+    b.lo = b.lo - pad;
+    b.hi = b.hi + pad;
+    return b;
+}
+
+// Whether the ray (from its origin on, any distance) may meet the box: a slab test in which an
+// infinite box, or a NaN from a direction along an axis, counts as a meeting.
+inline bool may_meet(const box3f& b, const ray3f& r) {
+    if (b.empty()) return false;
+    float t0 = 0, t1 = std::numeric_limits<float>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const float inv = 1.0f / r.dir[a];
+        float near = (b.lo[a] - r.origin[a]) * inv, far = (b.hi[a] - r.origin[a]) * inv;
+        if (near > far) std::swap(near, far);
+        if (near > t0) t0 = near; // a NaN compares false: no narrowing
+        if (far < t1) t1 = far;
+    }
+    return !(t0 > t1);
+}
+
 } // namespace detail
 
 // One light path (the numbers from rng): splat(x, y, value, light, camera_density) for each pixel
@@ -99,6 +175,34 @@ inline float light_path_start_density(const light& l, float pmf) {
 template <class Splat>
 void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth, pcg32& rng,
                         Splat&& splat, uint64_t& rays);
+
+// The points a camera sample's own light path reaches past delta vertices, for joining the
+// camera path's vertices to (caustic_splats::deep_light_path_weight): the light path starts as
+// trace_caustic_path's do, goes through delta vertices of materials without a density, and stops
+// at the first surface with a density; if that came after one or more of them, it is a point x
+// kept here, and if it is Lambertian the path goes on by its cosine, at most `capacity` times.
+struct caustic_light_vertices {
+    static constexpr int capacity = 3;
+    struct vertex {
+        vec3f p, normal, shading_normal; // as surface_hit's: the normals facing the arriving path
+        bool front_face = true;
+        vec3f wi;                        // back along the light path, towards the light
+        vec3f throughput;                // what the light path carries on arrival
+        uint32_t material;               // its index in the compiled scene's table
+        vec3f colour;                    // a textured material's colour at p
+        int vertices;                    // the path's vertices between the light and p
+    };
+    vertex at[capacity];
+    int count = 0;
+    uint32_t light = 0; // the light the path started from
+};
+
+// The light path of a camera sample: its numbers from u (the sample's own stream), at the camera
+// path's time, at most most_vertices vertices between the light and a kept point.
+// delta_bounds: detail::delta_shape_bounds(scene), which a first ray that misses has nothing to find.
+template <class Uniform>
+void trace_caustic_light_vertices(const compiled_scene& scene, const box3f& delta_bounds, int most_vertices,
+                                  Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays);
 
 // The light paths of a render, as the scheduler's splat work (scheduler.h,
 // render_samples_with_splats): for each sample index, `paths` light paths (rounded to a whole
@@ -138,6 +242,9 @@ class caustic_splats {
             start_density_[l] = detail::light_path_start_density(scene.lights.lights[l], scene.lights.pick_pmf(l));
     }
 
+    // The box of detail::delta_shape_bounds, for trace_caustic_light_vertices.
+    const box3f& delta_bounds() const { return delta_bounds_; }
+
     int jobs_per_sample() const { return int((paths_ + paths_per_job - 1) / paths_per_job); }
 
     // The path tracer's area density at x per camera sample, seen from lens point `lens`, x's
@@ -158,6 +265,23 @@ class caustic_splats {
         return 1.0f / (1.0f + r * r);
     }
     float light_path_weight(uint32_t l, float camera_density) const { return 1.0f - camera_path_weight(l, camera_density); }
+
+    // The same two weights for a path joined deeper: camera -> ... -> v -> x -> delta vertices
+    // (and Lambertian inner vertices between runs of them) -> light l, v and x with densities, x
+    // past the camera's first vertex. The path tracer finds it by sampling x's lobe; light tracing,
+    // by joining v to the point x of the camera sample's own light path (one per camera sample,
+    // caustic_light_vertices). As above, the ratio of their densities is the light path starts per
+    // unit of the light's area against the path tracer's area density at x, which given v is
+    // x_density = pdf_v(v -> x) |cos_x| / d^2.
+    float deep_camera_path_weight(uint32_t l, float x_density) const {
+        const float light = start_density_[l];
+        if (!(light > 0)) return 1.0f;      // light tracing cannot make it
+        if (std::isinf(light)) return 0.0f; // a point light: the path tracer cannot
+        if (!(x_density > 0)) return 1.0f;
+        const float r = light / x_density;
+        return 1.0f / (1.0f + r * r);
+    }
+    float deep_light_path_weight(uint32_t l, float x_density) const { return 1.0f - deep_camera_path_weight(l, x_density); }
 
     template <class Add, class Totals>
     void run(int s, int job, Add&& add, Totals& totals) const {
@@ -181,6 +305,7 @@ class caustic_splats {
     uint64_t seed_;
     int64_t paths_;
     std::vector<float> start_density_;
+    box3f delta_bounds_ = detail::delta_shape_bounds(scene_);
 };
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
@@ -209,10 +334,11 @@ inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, 
 // Where a light path starts: a point of light l (chosen with probability pmf), a direction, and
 // the throughput the path carries. False when l is textured (left to the path tracer) or
 // degenerate.
-inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, vec3f& throughput) {
+template <class Uniform>
+bool start_light_path(const light& l, float pmf, Uniform& u, ray3f& r, vec3f& throughput) {
     const float density = light_path_start_density(l, pmf);
     if (!(density > 0)) return false;
-    const auto [u1, u2] = draw_2d(rng);
+    const auto [u1, u2] = draw_2d(u);
     if (l.kind == light_kind::point) {
         r.origin = l.p0;
         r.dir = sample_unit_sphere(u1, u2);
@@ -237,12 +363,27 @@ inline bool start_light_path(const light& l, float pmf, pcg32& rng, ray3f& r, ve
     }
     case light_kind::point: break;
     }
-    if (l.two_sided && rng.next_float() < 0.5f) n = -n;
-    const auto [v1, v2] = draw_2d(rng);
+    if (l.two_sided && u.next_float() < 0.5f) n = -n;
+    const auto [v1, v2] = draw_2d(u);
     r.dir = sample_cosine_direction(n, v1, v2);
     r.origin = offset_ray_origin(y, n);
     throughput = l.emission * (pi_f / density); // Le cos / (density cos / pi)
     return true;
+}
+
+// One step of a light path: the surface r meets (hit), its material (a textured one's copy with
+// its colour, in looked_up) and the throughput past absorbing glass; nullptr where the path ends:
+// it escapes, or meets a light or what light paths do not pass (caustic_vertex).
+inline const compiled_material* light_path_step(const compiled_scene& scene, const ray3f& r, surface_hit& hit,
+                                                compiled_material& looked_up, vec3f& throughput, uint64_t& rays) {
+    ++rays;
+    if (!scene.intersect(r, hit)) return nullptr;
+    const compiled_material& stored = scene.materials[hit.material];
+    if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
+    const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
+    if (!caustic_vertex(hit, m) || m.kind == material_kind::diffuse_light) return nullptr;
+    if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+    return &m;
 }
 
 } // namespace detail
@@ -261,17 +402,16 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
     if (scene.has_motion) r.time = rng.next_float();
     surface_hit hit;
     compiled_material looked_up;
-    for (int delta_vertices = 0;; ++delta_vertices) {
-        ++rays;
-        if (!scene.intersect(r, hit)) return;
-        const compiled_material& stored = scene.materials[hit.material];
-        if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
-        const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
-        if (!caustic_vertex(hit, m) || m.kind == material_kind::diffuse_light) return;
-        if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+    // vertices: the path's vertices before this one; since_delta: of them, the delta vertices
+    // since the light or the last vertex with a density.
+    for (int vertices = 0, since_delta = 0;; ++vertices) {
+        const compiled_material* met = detail::light_path_step(scene, r, hit, looked_up, throughput, rays);
+        if (!met) return;
+        const compiled_material& m = *met;
         const vec3f wi = -r.dir; // back towards the light
 
-        if (delta_vertices >= 1 && m.has_non_delta_lobe()) {
+        // Light straight from the light or from an inner vertex is not a caustic.
+        if (m.has_non_delta_lobe() && since_delta > 0) {
             // Joined to the camera: a point of the lens, and a shadow ray to it.
             vec3f lens{0, 0, 0};
             if (frame.thin_lens) {
@@ -301,11 +441,69 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
                 }
             }
         }
-        // One more delta vertex would make the path tracer's path longer than max_depth rays.
-        if (delta_vertices + 1 > max_depth - 2) return;
+        // One more vertex would make the path tracer's path longer than max_depth rays.
+        if (vertices + 1 > max_depth - 2) return;
         material_sample s;
         const shading_point sp{hit.shading_normal, hit.front_face};
-        if (!m.sample(wi, sp, rng, s) || !s.is_delta()) return;
+        if (!m.sample(wi, sp, rng, s)) return;
+        if (s.is_delta()) {
+            ++since_delta;
+        } else {
+            // An inner vertex (see the top): a Lambertian surface past delta vertices, left by its
+            // cosine towards more of them.
+            if (m.kind != material_kind::lambertian || since_delta == 0) return;
+            since_delta = 0;
+        }
+        throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
+        if (detail::is_black(throughput)) return;
+        r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
+    }
+}
+
+template <class Uniform>
+void trace_caustic_light_vertices(const compiled_scene& scene, const box3f& delta_bounds, int most_vertices,
+                                  Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays) {
+    out.count = 0;
+    float pmf = 0;
+    const uint32_t chosen = scene.lights.pick(u.next_float(), pmf);
+    if (chosen == light_set::none) return;
+    out.light = chosen;
+    ray3f r;
+    vec3f throughput;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, u, r, throughput)) return;
+    r.tmin = 0;
+    r.tmax = std::numeric_limits<float>::infinity();
+    r.time = time;
+    // Most light paths meet a surface with a density first, where they stop: those that cannot
+    // meet a delta vertex first are not traced at all.
+    if (!detail::may_meet(delta_bounds, r)) return;
+    surface_hit hit;
+    compiled_material looked_up;
+    for (int vertices = 0, since_delta = 0; vertices <= most_vertices; ++vertices) {
+        const compiled_material* met = detail::light_path_step(scene, r, hit, looked_up, throughput, rays);
+        if (!met) return;
+        const compiled_material& m = *met;
+        const vec3f wi = -r.dir; // back towards the light
+        if (m.has_non_delta_lobe()) {
+            if (since_delta == 0) return; // light no delta vertex has bent: not a caustic
+            caustic_light_vertices::vertex& x = out.at[out.count++];
+            x.p = hit.p;
+            x.normal = hit.normal;
+            x.shading_normal = hit.shading_normal;
+            x.front_face = hit.front_face;
+            x.wi = wi;
+            x.throughput = throughput;
+            x.material = hit.material;
+            x.colour = m.albedo;
+            x.vertices = vertices;
+            if (m.kind != material_kind::lambertian || out.count == caustic_light_vertices::capacity) return;
+            since_delta = 0;
+        } else {
+            ++since_delta;
+        }
+        material_sample s;
+        const shading_point sp{hit.shading_normal, hit.front_face};
+        if (!m.sample(wi, sp, u, s)) return;
         throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
         if (detail::is_black(throughput)) return;
         r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());

@@ -142,8 +142,9 @@ struct vertex_material {
 // Materials see the shading normal (a smooth mesh's interpolated one, folded as vertex_material
 // says; else the geometric normal). Each decision draws from its own dimension of the sampler
 // (sampler.h). With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x,
-// its non-delta lobe sampled -> one or more delta vertices -> a light) count here by the path
-// tracer's share.
+// its non-delta lobe sampled -> one or more delta vertices, with Lambertian vertices between runs
+// of them -> a light; and the same past the first vertex, which light tracing finds by joining the
+// path's vertices to the sample's own light path) count here by the path tracer's share.
 //
 // The path tracer advances a batch's paths side by side, a bounce of each in turn: their rays
 // are traced together (as packets, compiled_scene::intersect_batch), and the processor overlaps
@@ -155,7 +156,15 @@ class camera_path {
                 pixel_sampler& ps, uint64_t& rays, const caustic_splats* caustics = nullptr)
         : scene(scene), env(env), lights(scene.lights), roulette_start(roulette_depth(scene.lights)),
           max_depth(max_depth), ps(ps), rays(rays), caustics(caustics), r(camera_ray), lens(camera_ray.origin),
-          done_(max_depth <= 0) {}
+          done_(max_depth <= 0) {
+        if (caustics && max_depth >= 3) {
+            // The sample's own light path, which deeper vertices are joined to, its numbers from
+            // the sample's own stream (joined to every vertex of the path, it gains little from
+            // stratified numbers, which cost more to draw).
+            trace_caustic_light_vertices(scene, caustics->delta_bounds(), max_depth - 3, ps.rng(), camera_ray.time,
+                                         light_path, rays);
+        }
+    }
 
     bool done() const { return done_; }
     const ray3f& ray() const { return r; }
@@ -165,6 +174,7 @@ class camera_path {
 
   private:
     void finish() { done_ = true; }
+    void join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit);
 
     const compiled_scene& scene;
     const environment& env;
@@ -183,10 +193,21 @@ class camera_path {
     vec3f last_p;
     float last_pdf = 0;
     // Where the path stands in the pattern light tracing also finds: none, at x (the camera's first
-    // vertex, which sampled its non-delta lobe), or past one or more delta vertices after x; and
-    // x itself, whose camera density weighs the two (asked only of the paths that end on a light).
-    enum class caustic_state : uint8_t { none, at_x, past_delta } caustic = caustic_state::none;
+    // vertex, which sampled its non-delta lobe), past one or more delta vertices after x, or at a
+    // Lambertian inner vertex after them; and x itself, whose camera density weighs the two (asked
+    // only of the paths that end on a light).
+    enum class caustic_state : uint8_t { none, at_x, past_delta, inner } caustic = caustic_state::none;
     vec3f x_p, x_normal;
+    // The same deeper (caustic_splats::deep_camera_path_weight): the path went from a vertex v
+    // past the first, by its non-delta lobe, to x, and on by x's non-delta lobe through delta
+    // vertices of materials without a density, with inner_vertices Lambertian ones between them;
+    // x_density is x's area density given v. light_path: the points the sample's own light path
+    // reached, which vertices like v are joined to.
+    caustic_state deep_caustic = caustic_state::none;
+    int inner_vertices = 0;
+    bool left_by_density = false; // the ray left a caustic vertex by its non-delta lobe
+    float x_density = 0;
+    caustic_light_vertices light_path;
     const vec3f lens;
     bool done_;
 };
@@ -229,6 +250,10 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
             const uint32_t l = lights.light_at(hit.kind, hit.index);
             if (l != light_set::none)
                 weight *= caustics->camera_path_weight(l, caustics->camera_density(x_p, lens, x_normal));
+        }
+        if (deep_caustic == caustic_state::past_delta) {
+            const uint32_t l = lights.light_at(hit.kind, hit.index);
+            if (l != light_set::none) weight *= caustics->deep_camera_path_weight(l, x_density);
         }
         radiance += throughput * le * weight;
     }
@@ -280,6 +305,10 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
         if (lights.sample_point(hit.p, u, lc)) add_light_sample(lc);
     }
 
+    // Caustics past this vertex, by light tracing: joined to the points the sample's light path
+    // reached past delta vertices.
+    if (caustics && light_path.count > 0 && has_density && caustic_vertex(hit, m)) join_light_path(vm, hit);
+
     material_sample s;
     dimension_uniforms material_u = material_uniforms(ps, depth);
     if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
@@ -311,8 +340,27 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
             caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
             x_p = hit.p;
             x_normal = hit.normal;
-        } else if (caustic != caustic_state::none)
-            caustic = plain && s.is_delta() ? caustic_state::past_delta : caustic_state::none;
+        } else if (caustic != caustic_state::none && plain && s.is_delta()) {
+            caustic = caustic_state::past_delta;
+        } else if (caustic == caustic_state::past_delta && plain && m.kind == material_kind::lambertian) {
+            caustic = caustic_state::inner; // its non-delta lobe sampled: the only one it has
+        } else {
+            caustic = caustic_state::none;
+        }
+        if (depth >= 1 && plain && !s.is_delta() && left_by_density) {
+            deep_caustic = caustic_state::at_x;
+            inner_vertices = 0;
+            x_density = last_pdf * std::fabs(dot(hit.normal, r.dir)) / (hit.t * hit.t);
+        } else if (deep_caustic != caustic_state::none && plain && s.is_delta() && !m.has_non_delta_lobe()) {
+            deep_caustic = caustic_state::past_delta;
+        } else if (deep_caustic == caustic_state::past_delta && plain && m.kind == material_kind::lambertian &&
+                   inner_vertices + 1 < caustic_light_vertices::capacity) {
+            deep_caustic = caustic_state::inner;
+            ++inner_vertices;
+        } else {
+            deep_caustic = caustic_state::none;
+        }
+        left_by_density = plain && !s.is_delta();
     }
     count_emission_fully = E != path_estimator::nee || s.is_delta();
     last_p = hit.p;
@@ -328,6 +376,45 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
     r = spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity(), in_volume);
     // The book: no more light is gathered past the bounce limit.
     if (++depth >= max_depth) finish();
+}
+
+// This vertex v joined to each point x its sample's light path reached: the path camera -> ... ->
+// v -> x -> delta vertices -> light, as trace_caustic_path joins x to the camera, with v's
+// throughput and f in place of the camera's importance:
+//     throughput f_v(wo, dir) |cos_x| / d^2 * f_x(-dir, wi) / |cos_g(wi)| * light throughput,
+// weighed against the path tracer's finding it (caustic_splats::deep_light_path_weight).
+template <path_estimator E, bool UserMaterials>
+void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit) {
+    for (int k = 0; k < light_path.count; ++k) {
+        const caustic_light_vertices::vertex& x = light_path.at[k];
+        // The path tracer's path would be longer than max_depth rays.
+        if (depth + x.vertices + 3 > max_depth) return;
+        const vec3f to = x.p - hit.p;
+        const float d2 = length_squared(to);
+        if (!(d2 > 0)) continue;
+        const vec3f dir = to / std::sqrt(d2);
+        const vec3f f_v = vm.eval(dir);
+        if (is_black(f_v)) continue;
+        // x as seen from v: normals on v's side.
+        const vec3f wo = -dir;
+        const bool flip = dot(wo, x.normal) < 0;
+        const shading_point sp{flip ? -x.shading_normal : x.shading_normal, flip != x.front_face};
+        compiled_material m = scene.materials[x.material];
+        m.albedo = x.colour; // a textured one's colour at x (else its own)
+        const vec3f f_x = m.eval(wo, x.wi, sp);
+        const float cos_in = std::fabs(dot(x.normal, x.wi)), cos_out = std::fabs(dot(x.normal, dir));
+        if (is_black(f_x) || !(cos_in > 0)) continue;
+        const float weight = caustics->deep_light_path_weight(light_path.light, vm.pdf(dir) * cos_out / d2);
+        const vec3f value = throughput * f_v * f_x * x.throughput * (weight * cos_out / (d2 * cos_in));
+        if (is_black(value) || !is_finite(value)) continue;
+        // The shadow ray, from v to x pushed off x on v's side.
+        light_choice end;
+        end.wi = dir;
+        end.y = x.p;
+        end.n = x.normal;
+        ++rays;
+        if (!scene.occluded(shadow_ray(hit, end, false))) radiance += value;
+    }
 }
 
 // One path from start to end: the radiance it carries.
