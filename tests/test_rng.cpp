@@ -72,6 +72,28 @@ TEST_CASE("sample_rng: deterministic per (seed, pixel, sample), distinct across 
     CHECK(seen.size() == size_t(total));
 }
 
+TEST_CASE("pcg32::split: leaves its parent as it was, and the two streams do not move together") {
+    pcg32 parent = sample_rng(7, 11, 13), untouched = parent;
+    pcg32 child = parent.split(), again = parent.split();
+    for (int i = 0; i < 10; ++i) CHECK(parent.next_u32() == untouched.next_u32()); // not advanced
+    for (int i = 0; i < 10; ++i) CHECK(child.next_u32() == again.next_u32());      // deterministic
+    // Parent and child, 4096 floats each: their correlation is that of independent uniforms,
+    // |r| within 4 / sqrt(n) (standard deviation 1 / sqrt(n)), and neither repeats the other.
+    pcg32 p = sample_rng(7, 11, 13), c = p.split();
+    const int n = 4096;
+    double sp = 0, sc = 0, spp = 0, scc = 0, spc = 0;
+    int equal = 0;
+    for (int i = 0; i < n; ++i) {
+        const double x = p.next_float(), y = c.next_float();
+        sp += x, sc += y, spp += x * x, scc += y * y, spc += x * y;
+        equal += x == y;
+    }
+    const double cov = spc / n - (sp / n) * (sc / n);
+    const double r = cov / std::sqrt((spp / n - (sp / n) * (sp / n)) * (scc / n - (sc / n) * (sc / n)));
+    CHECK(std::fabs(r) < 4.0 / std::sqrt(double(n)));
+    CHECK(equal < 8); // 24-bit floats: about n / 2^24 equal by chance
+}
+
 TEST_CASE("random_double: rand()/(RAND_MAX+1) outside a render, the sample generator inside") {
     std::srand(17);
     double r1 = std::rand() / (RAND_MAX + 1.0), r2 = std::rand() / (RAND_MAX + 1.0);

@@ -159,9 +159,11 @@ class camera_path {
           done_(max_depth <= 0) {
         if (caustics && max_depth >= 3) {
             // The sample's own light path, which deeper vertices are joined to, its numbers from
-            // the sample's own stream (joined to every vertex of the path, it gains little from
-            // stratified numbers, which cost more to draw).
-            trace_caustic_light_vertices(scene, caustics->delta_bounds(), max_depth - 3, ps.rng(), camera_ray.time,
+            // a stream split off the sample's own, which it leaves as it was (joined to every
+            // vertex of the path, the light path gains little from stratified numbers, which cost
+            // more to draw).
+            pcg32 light_rng = ps.rng().split();
+            trace_caustic_light_vertices(scene, caustics->delta_bounds(), max_depth - 3, light_rng, camera_ray.time,
                                          light_path, rays);
         }
     }

@@ -24,6 +24,13 @@ constexpr auto has_next_2d(int) -> decltype(std::declval<U&>().next_2d(), bool()
 template <class U>
 constexpr bool has_next_2d(long) { return false; }
 
+// SplitMix64's finaliser (Steele, Lea and Flood, OOPSLA 2014): a bijective 64-bit mix.
+inline constexpr uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
 class pcg32 {
   public:
     constexpr pcg32() = default;
@@ -44,6 +51,11 @@ class pcg32 {
         auto rot = static_cast<uint32_t>(old >> 59u);
         return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
     }
+
+    // A generator of its own, seeded from a hash of this one's state on another stream, this one
+    // not advanced: for numbers that must not shift this stream's (the light path a camera
+    // sample traces, path_tracer.h, beside the numbers of the sample's own path).
+    constexpr pcg32 split() const { return pcg32(mix64(state_ ^ 0x2545f4914f6cdd1dULL), mix64(inc_)); }
 
     // Uniform in [0, 1): 24 random bits, so the result is exactly representable and never 1.
     constexpr float next_float() { return static_cast<float>(next_u32() >> 8) * 0x1p-24f; }
@@ -74,13 +86,6 @@ uniform2 draw_2d(Uniform& u) {
         const float u2 = u.next_float();
         return {u1, u2};
     }
-}
-
-// SplitMix64's finaliser (Steele, Lea and Flood, OOPSLA 2014): a bijective 64-bit mix.
-inline constexpr uint64_t mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
 }
 
 // The generator for sample `sample` of pixel `pixel` in a render seeded with `seed`.
