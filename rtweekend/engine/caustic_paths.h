@@ -2,7 +2,7 @@
 // Caustic paths traced from the lights: the part of the image that next-event estimation cannot
 // reach, found the other way round.
 //
-//   if (traces_caustics(scene)) ... trace_caustic_path(scene, frame, max_depth, rng, splat, rays);
+//   if (traces_caustics(scene)) ... caustic_splats splats(scene, frame, max_depth, seed, paths);
 //
 // A caustic is light that reaches a diffuse or glossy surface through glass or mirrors (light ->
 // one or more delta lobes -> surface). Next-event estimation cannot find it: the shadow ray stops
@@ -172,9 +172,10 @@ inline bool may_meet(const box3f& b, const ray3f& r) {
 // One light path (the numbers from rng): splat(x, y, value, light, camera_density) for each pixel
 // it adds to, with the index of the light it started from and the camera's density at the surface
 // point it was joined from (caustic_splats::camera_density); rays counts the rays traced.
+// start_density: per light, detail::light_path_start_density.
 template <class Splat>
-void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth, pcg32& rng,
-                        Splat&& splat, uint64_t& rays);
+void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth,
+                        const std::vector<float>& start_density, pcg32& rng, Splat&& splat, uint64_t& rays);
 
 // The points a camera sample's own light path reaches past delta vertices, for joining the
 // camera path's vertices to (caustic_splats::deep_light_path_weight): the light path starts as
@@ -197,11 +198,13 @@ struct caustic_light_vertices {
     uint32_t light = 0; // the light the path started from
 };
 
-// The light path of a camera sample: its numbers from u (the sample's own stream), at the camera
-// path's time, at most most_vertices vertices between the light and a kept point.
-// delta_bounds: detail::delta_shape_bounds(scene), which a first ray that misses has nothing to find.
+class caustic_splats;
+
+// The light path of a camera sample in a render whose light tracing `splats` sets up: its numbers
+// from u, at the camera path's time, at most most_vertices vertices between the light and a kept
+// point.
 template <class Uniform>
-void trace_caustic_light_vertices(const compiled_scene& scene, const box3f& delta_bounds, int most_vertices,
+void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_splats& splats, int most_vertices,
                                   Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays);
 
 // The light paths of a render, as the scheduler's splat work (scheduler.h,
@@ -242,7 +245,8 @@ class caustic_splats {
             start_density_[l] = detail::light_path_start_density(scene.lights.lights[l], scene.lights.pick_pmf(l));
     }
 
-    // The box of detail::delta_shape_bounds, for trace_caustic_light_vertices.
+    // A box around the shapes with a delta lobe (detail::delta_shape_bounds): a light path whose
+    // first ray misses it has nothing to find (trace_caustic_light_vertices).
     const box3f& delta_bounds() const { return delta_bounds_; }
 
     int jobs_per_sample() const { return int((paths_ + paths_per_job - 1) / paths_per_job); }
@@ -258,11 +262,7 @@ class caustic_splats {
     // The power-heuristic weights of a path whose camera vertex has density camera_density and
     // whose light is l: the path tracer's and light tracing's, which sum to 1.
     float camera_path_weight(uint32_t l, float camera_density) const {
-        const float light = float(paths_) * start_density_[l];
-        if (!(light > 0) || !(camera_density > 0)) return 1.0f; // light tracing cannot make it
-        if (std::isinf(light)) return 0.0f;
-        const float r = light / camera_density;
-        return 1.0f / (1.0f + r * r);
+        return camera_share(float(paths_) * start_density_[l], camera_density);
     }
     float light_path_weight(uint32_t l, float camera_density) const { return 1.0f - camera_path_weight(l, camera_density); }
 
@@ -273,14 +273,7 @@ class caustic_splats {
     // caustic_light_vertices). As above, the ratio of their densities is the light path starts per
     // unit of the light's area against the path tracer's area density at x, which given v is
     // x_density = pdf_v(v -> x) |cos_x| / d^2.
-    float deep_camera_path_weight(uint32_t l, float x_density) const {
-        const float light = start_density_[l];
-        if (!(light > 0)) return 1.0f;      // light tracing cannot make it
-        if (std::isinf(light)) return 0.0f; // a point light: the path tracer cannot
-        if (!(x_density > 0)) return 1.0f;
-        const float r = light / x_density;
-        return 1.0f / (1.0f + r * r);
-    }
+    float deep_camera_path_weight(uint32_t l, float x_density) const { return camera_share(start_density_[l], x_density); }
     float deep_light_path_weight(uint32_t l, float x_density) const { return 1.0f - deep_camera_path_weight(l, x_density); }
 
     template <class Add, class Totals>
@@ -289,7 +282,7 @@ class caustic_splats {
         const int64_t end = std::min(paths_, int64_t(job + 1) * paths_per_job);
         for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
             pcg32 rng = sample_rng(seed_, uint64_t(k), uint64_t(s));
-            trace_caustic_path(scene_, frame_, max_depth_, rng,
+            trace_caustic_path(scene_, frame_, max_depth_, start_density_, rng,
                                [&](int x, int y, const vec3f& value, uint32_t l, float camera_density) {
                                    const float w = light_path_weight(l, camera_density);
                                    if (w > 0) add(x, y, value * (share * w));
@@ -298,7 +291,20 @@ class caustic_splats {
         }
     }
 
+    // Light-path starts per unit of light l's area, per path (detail::light_path_start_density),
+    // worked out once per render.
+    float start_density(uint32_t l) const { return start_density_[l]; }
+
   private:
+    // The path tracer's power-heuristic share of a path that light tracing makes with density
+    // `light` and the path tracer with density `camera`, per unit of the same measure.
+    static float camera_share(float light, float camera) {
+        if (!(light > 0) || !(camera > 0)) return 1.0f; // light tracing cannot make it
+        if (std::isinf(light)) return 0.0f;               // a point light: the path tracer cannot
+        const float r = light / camera;
+        return 1.0f / (1.0f + r * r);
+    }
+
     const compiled_scene& scene_;
     const camera_frame& frame_;
     int max_depth_;
@@ -331,12 +337,11 @@ inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, 
     return mine > 0 ? theirs / mine : 0.0f;
 }
 
-// Where a light path starts: a point of light l (chosen with probability pmf), a direction, and
-// the throughput the path carries. False when l is textured (left to the path tracer) or
-// degenerate.
+// Where a light path starts: a point of light l (chosen with probability pmf; density, its
+// light_path_start_density, worked out once per render), a direction, and the throughput the path
+// carries. False when l is textured (left to the path tracer) or degenerate (density 0).
 template <class Uniform>
-bool start_light_path(const light& l, float pmf, Uniform& u, ray3f& r, vec3f& throughput) {
-    const float density = light_path_start_density(l, pmf);
+bool start_light_path(const light& l, float pmf, float density, Uniform& u, ray3f& r, vec3f& throughput) {
     if (!(density > 0)) return false;
     const auto [u1, u2] = draw_2d(u);
     if (l.kind == light_kind::point) {
@@ -389,14 +394,14 @@ inline const compiled_material* light_path_step(const compiled_scene& scene, con
 } // namespace detail
 
 template <class Splat>
-void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth, pcg32& rng,
-                        Splat&& splat, uint64_t& rays) {
+void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth,
+                        const std::vector<float>& start_density, pcg32& rng, Splat&& splat, uint64_t& rays) {
     float pmf = 0;
     const uint32_t chosen = scene.lights.pick(rng.next_float(), pmf);
     if (chosen == light_set::none) return;
     ray3f r;
     vec3f throughput;
-    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, rng, r, throughput)) return;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, start_density[chosen], rng, r, throughput)) return;
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();
     if (scene.has_motion) r.time = rng.next_float();
@@ -461,7 +466,7 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
 }
 
 template <class Uniform>
-void trace_caustic_light_vertices(const compiled_scene& scene, const box3f& delta_bounds, int most_vertices,
+void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_splats& splats, int most_vertices,
                                   Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays) {
     out.count = 0;
     float pmf = 0;
@@ -470,13 +475,14 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const box3f& delt
     out.light = chosen;
     ray3f r;
     vec3f throughput;
-    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, u, r, throughput)) return;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, splats.start_density(chosen), u, r, throughput))
+        return;
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();
     r.time = time;
     // Most light paths meet a surface with a density first, where they stop: those that cannot
     // meet a delta vertex first are not traced at all.
-    if (!detail::may_meet(delta_bounds, r)) return;
+    if (!detail::may_meet(splats.delta_bounds(), r)) return;
     surface_hit hit;
     compiled_material looked_up;
     for (int vertices = 0, since_delta = 0; vertices <= most_vertices; ++vertices) {

@@ -163,7 +163,7 @@ class camera_path {
             // vertex of the path, the light path gains little from stratified numbers, which cost
             // more to draw).
             pcg32 light_rng = ps.rng().split();
-            trace_caustic_light_vertices(scene, caustics->delta_bounds(), max_depth - 3, light_rng, camera_ray.time,
+            trace_caustic_light_vertices(scene, *caustics, max_depth - 3, light_rng, camera_ray.time,
                                          light_path, rays);
         }
     }
