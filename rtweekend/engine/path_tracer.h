@@ -31,6 +31,15 @@
 #include <type_traits>
 #include <vector>
 
+// path_trace is defined below inline, as a header-only library's functions are. A program whose
+// files would each compile it again can compile it once instead: one file defines
+// RTWEEKEND_PATH_TRACER_INLINE as nothing before including this header (a definition that is not
+// inline), and the others define RTWEEKEND_LINK_PATH_TRACER (the declarations alone). This
+// project's apps and tests do so (apps/path_tracer_once.cpp), as it is most of their build time.
+#ifndef RTWEEKEND_PATH_TRACER_INLINE
+#define RTWEEKEND_PATH_TRACER_INLINE inline
+#endif
+
 namespace rt {
 
 // Renders `world` through `frame` with the path tracer. Throws scene_error on bad input.
@@ -434,12 +443,13 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3
 
 } // namespace detail
 
-inline render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+#ifndef RTWEEKEND_LINK_PATH_TRACER
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
                                 const render_settings& settings) {
     return path_trace(world, frame, env, settings, {});
 }
 
-inline render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
                                 const render_settings& settings, const std::vector<point_light>& point_lights) {
     auto start = std::chrono::steady_clock::now();
     settings.check();
@@ -518,5 +528,6 @@ inline render_result path_trace(const hittable& world, const camera_frame& frame
     }
     return render_with(std::integral_constant<path_estimator, path_estimator::nee>{});
 }
+#endif
 
 } // namespace rt
