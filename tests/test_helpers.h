@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -26,6 +27,26 @@
 #include <unistd.h>
 
 namespace test {
+
+// True in a build with AddressSanitizer (CI's second pass, at -O0), where a render runs some 40
+// times slower than in the first pass. The few statistical tests that render most take a
+// `sanitized_share` of their samples there, and check only what fewer samples can: the mean
+// within its measured standard errors, not how small those errors are. The sanitizers look for
+// memory errors and undefined behaviour on the same code paths; the first pass holds the full
+// statistics.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool sanitized_build = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool sanitized_build = true;
+#else
+inline constexpr bool sanitized_build = false;
+#endif
+#else
+inline constexpr bool sanitized_build = false;
+#endif
+// `samples`, or an eighth of it (at least 1) in a sanitized build.
+inline int sanitized_share(int samples) { return sanitized_build ? std::max(1, samples / 8) : samples; }
 
 // Runs `f`, which must throw one scene_error whose message is one line (no line break or NUL)
 // holding every fragment.

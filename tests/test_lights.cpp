@@ -198,7 +198,7 @@ TEST_CASE("furnace with an emitter: a closed room converges to a Le s / (1 - a (
     const hittable_list& world = room.world;
     const double expected = room.expected;
     for (path_estimator e : all_estimators) {
-        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, 64, e);
+        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, test::sanitized_share(64), e);
         cam.max_depth = 200; // a^200: no light lost to the bounce limit
         check_mean(test::render_checked(cam, world).img, expected, estimator_name(e));
     }
@@ -206,13 +206,15 @@ TEST_CASE("furnace with an emitter: a closed room converges to a Le s / (1 - a (
     // light's silhouette once met the light itself before the sampled point and lost 0.45 % of
     // the light (path_tracer.h, shadow_ray), which 64 samples could not tell from noise.
     {
-        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, 512, path_estimator::nee);
+        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, test::sanitized_share(512),
+                                     path_estimator::nee);
         cam.max_depth = 200;
         check_mean(test::render_checked(cam, world).img, expected, "nee at 512 spp");
     }
     // Every sampler: long paths draw from many dimensions (roulette, lights, directions).
     for (sampler_kind k : {sampler_kind::independent, sampler_kind::stratified}) {
-        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, 64, path_estimator::nee, k);
+        camera cam = pinpoint_camera(point3(0, 0, 6), point3(0, 0, 10), vec3(0, 1, 0), 32, test::sanitized_share(64),
+                                     path_estimator::nee, k);
         cam.max_depth = 200;
         check_mean(test::render_checked(cam, world).img, expected, sampler_name(k));
     }
@@ -300,7 +302,7 @@ TEST_CASE("nee, bsdf and mixture converge to the same Cornell box") {
 // The sphere room's light is small and far from its huge walls: next-event estimation there once
 // lost 1.75 % of the image to shadow rays that met the light itself (path_tracer.h, shadow_ray).
 TEST_CASE("nee, bsdf and mixture converge to the same sphere room") {
-    check_estimators_agree(make_sphere_room(), 16, 10, 64, false);
+    check_estimators_agree(make_sphere_room(), 16, 10, test::sanitized_share(64), false);
 }
 
 TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it agree in a bright furnace") {
