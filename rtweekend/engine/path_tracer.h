@@ -444,13 +444,14 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3
 } // namespace detail
 
 #ifndef RTWEEKEND_LINK_PATH_TRACER
-RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
-                                const render_settings& settings) {
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
+                                                      const environment& env, const render_settings& settings) {
     return path_trace(world, frame, env, settings, {});
 }
 
-RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
-                                const render_settings& settings, const std::vector<point_light>& point_lights) {
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
+                                                      const environment& env, const render_settings& settings,
+                                                      const std::vector<point_light>& point_lights) {
     auto start = std::chrono::steady_clock::now();
     settings.check();
     const compiled_scene scene = compile_scene(world, frame.position, point_lights);
