@@ -24,8 +24,8 @@ namespace fs = std::filesystem;
 // The rungs, lowest first.
 const std::vector<std::vector<std::string>> ladder = {
     // 1. foundations
-    {"constants.h", "scene_error.h", "engine/rng.h", "engine/simd.h", "engine/force_inline.h", "io/input_limits.h",
-     "io/file.h", "io/text_lines.h", "io/image_header.h", "io/jpeg_check.h"},
+    {"constants.h", "scene_error.h", "engine/rng.h", "engine/simd.h", "engine/force_inline.h", "engine/in_place_array.h",
+     "io/input_limits.h", "io/file.h", "io/text_lines.h", "io/image_header.h", "io/jpeg_check.h"},
     // 2. math: the book's vectors and intervals, the engine's float vectors, warps, Fresnel
     {"vec3.h", "interval.h", "ray.h", "color.h", "aabb.h", "engine/vec3f.h", "engine/sampling.h", "engine/sampler.h",
      "engine/alias_table.h", "engine/light_sampling.h",

@@ -22,6 +22,7 @@
 #include "bsdf.h"
 #include "bvh.h"
 #include "force_inline.h"
+#include "in_place_array.h"
 #include "instance_set.h"
 #include "leaf_query.h"
 #include "light_set.h"
@@ -352,24 +353,33 @@ inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hi
             continue;
         }
         const bvh_packet packet(r, count);
-        alignas(64) float lane[7][W] = {};
+        // The rays across lanes; lanes past count hold zeros (never garbage: no denormal or NaN
+        // slows their arithmetic down), written only when there are such lanes.
+        alignas(64) float lane[7][W];
         alignas(64) float t_best[W];
-        for (int k = 0; k < W; ++k) t_best[k] = k < count ? r[k].tmax : 0.0f;
         for (int k = 0; k < count; ++k) {
             lane[0][k] = r[k].origin.x, lane[1][k] = r[k].origin.y, lane[2][k] = r[k].origin.z;
             lane[3][k] = r[k].dir.x, lane[4][k] = r[k].dir.y, lane[5][k] = r[k].dir.z;
             lane[6][k] = r[k].tmin;
+            t_best[k] = r[k].tmax;
+        }
+        for (int k = count; k < W; ++k) {
+            for (int a = 0; a < 7; ++a) lane[a][k] = 0.0f;
+            t_best[k] = 0.0f;
         }
         const ray_lanes lanes{floatv::load(lane[0]), floatv::load(lane[1]), floatv::load(lane[2]), floatv::load(lane[3]),
                               floatv::load(lane[4]), floatv::load(lane[5]), floatv::load(lane[6])};
         hit_ref best[W];
-        leaf_state state[W];
+        // What the kernels of shapes other than spheres keep per ray (leaf_state), made for the
+        // packet's rays only when it meets such a leaf: a sphere packet never builds them.
+        in_place_array<leaf_state, W> state;
         traverse_packet(bvh, packet, t_best, (1u << count) - 1u, [&](uint32_t ref, unsigned active) {
             const shape_kind kind = single_kind ? *single_kind : bvh_ref::kind(ref);
             if (kind == shape_kind::sphere) {
                 spheres.intersect_leaf_packet(lanes, bvh_ref::first(ref), bvh_ref::count(ref), active, t_best, best);
                 return;
             }
+            while (state.size() < count) state.emplace_back();
             // Other shapes: each lane's ray through its kind's own kernel.
             with_shape_kind(kind, [&](auto k) {
                 for (unsigned m = active; m; m &= m - 1) {
@@ -378,11 +388,12 @@ inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hi
                 }
             });
         });
+        const leaf_state nothing_kept;
         for (int k = 0; k < count; ++k) {
             surface_hit& hit = hits[start + k];
             hit.user_shape = nullptr;
             found[start + k] = best[k].index != hit_ref::none;
-            if (found[start + k]) complete_hit(r[k], t_best[k], best[k], state[k], hit);
+            if (found[start + k]) complete_hit(r[k], t_best[k], best[k], state.size() > 0 ? state[k] : nothing_kept, hit);
         }
     }
 }

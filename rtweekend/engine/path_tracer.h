@@ -13,6 +13,7 @@
 #include "caustic_paths.h"
 #include "compiled_scene.h"
 #include "environment.h"
+#include "in_place_array.h"
 #include "light_sampling.h"
 #include "light_set.h"
 #include "ray_offset.h"
@@ -230,14 +231,14 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
         if (!(depth > 0 && env.camera_rays_only)) radiance += throughput * env.eval(r.dir);
         return finish();
     }
-    std::optional<compiled_material> reported; // the material a user-written hittable reports at its hit
-    compiled_material looked_up;                // a textured material with its colour at the hit
-    if (hit.user_shape) reported = compile_reported_material(hit.user_record);
-    const compiled_material& stored = hit.user_shape ? *reported : scene.materials[hit.material];
-    // A textured material is asked as a copy holding the texture's colour at this hit; an
-    // untextured one pays only this test.
-    if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
-    const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
+    // The material at the hit: the scene's, or one built here, as a user-written hittable reports
+    // it (built from its record) or as a textured one is asked (a copy holding the texture's
+    // colour at this hit). An untextured material of the scene pays only the tests.
+    in_place_array<compiled_material, 2> built;
+    const compiled_material* at_hit = hit.user_shape ? &built.emplace_back(compile_reported_material(hit.user_record))
+                                                     : &scene.materials[hit.material];
+    if (at_hit->texture != no_texture) at_hit = &built.emplace_back(textured(scene, *at_hit, hit));
+    const compiled_material& m = *at_hit;
     // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
     // inside it (directions are unit).
     if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
@@ -466,9 +467,9 @@ RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, con
     // path on its own.
     auto trace_batch = [&](auto estimator, sample_batch& b, const caustic_splats* splats) {
         constexpr path_estimator E = decltype(estimator)::value;
-        std::optional<pixel_sampler> samplers[sample_batch::capacity];
+        in_place_array<pixel_sampler, sample_batch::capacity> samplers;
         pixel_sampler* lanes[sample_batch::capacity];
-        for (int k = 0; k < b.count; ++k) lanes[k] = &samplers[k].emplace(plan, b.x[k], b.y[k], b.s[k], b.rng[k]);
+        for (int k = 0; k < b.count; ++k) lanes[k] = &samplers.emplace_back(plan, b.x[k], b.y[k], b.s[k], b.rng[k]);
         ray3f camera_rays[sample_batch::capacity];
         frame.sample_rays(b.count, b.x, b.y, lanes, spp, with_time, camera_rays);
         if (user_code) {
@@ -485,26 +486,26 @@ RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, con
         // together (as packets: the camera rays start together and point nearly the same way;
         // later bounces' rays less so, but the walk through the top of the tree, which most of
         // them share, is paid once, and the processor overlaps the rays' work).
-        std::optional<detail::camera_path<E, false>> paths[sample_batch::capacity];
-        for (int k = 0; k < b.count; ++k) paths[k].emplace(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
+        in_place_array<detail::camera_path<E, false>, sample_batch::capacity> paths;
+        for (int k = 0; k < b.count; ++k) paths.emplace_back(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
         int live[sample_batch::capacity], n = 0;
         for (int k = 0; k < b.count; ++k)
-            if (!paths[k]->done()) live[n++] = k;
+            if (!paths[k].done()) live[n++] = k;
         ray3f next[sample_batch::capacity];
         surface_hit hits[sample_batch::capacity];
         bool found[sample_batch::capacity];
         while (n > 0) {
-            for (int i = 0; i < n; ++i) next[i] = paths[live[i]]->ray();
+            for (int i = 0; i < n; ++i) next[i] = paths[live[i]].ray();
             scene.intersect_batch(n, next, hits, found);
             int still = 0;
             for (int i = 0; i < n; ++i) {
-                detail::camera_path<E, false>& path = *paths[live[i]];
+                detail::camera_path<E, false>& path = paths[live[i]];
                 path.advance(found[i], hits[i]);
                 if (!path.done()) live[still++] = live[i];
             }
             n = still;
         }
-        for (int k = 0; k < b.count; ++k) b.color[k] = paths[k]->radiance_so_far();
+        for (int k = 0; k < b.count; ++k) b.color[k] = paths[k].radiance_so_far();
     };
     if (caustics) {
         caustic_splats splats(scene, frame, max_depth, settings.seed,
