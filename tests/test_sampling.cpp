@@ -1,4 +1,5 @@
-// Sampling warps (rtweekend/engine/sampling.h): uniform sphere, uniform disk, cosine hemisphere.
+// Sampling warps (rtweekend/engine/sampling.h): the unit circle, uniform sphere, uniform disk,
+// cosine hemisphere.
 //
 // Moments are checked on a stratified grid of (u1, u2) (midpoints of an n x n grid), where the
 // sample mean approximates the integral deterministically with error O(1/n^2) for smooth
@@ -8,6 +9,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace test_sampling {
@@ -23,6 +25,39 @@ void for_grid(int n, F f) {
 }
 
 } // namespace
+
+TEST_CASE("unit_circle: (cos 2 pi u, sin 2 pi u) in every quarter turn") {
+    // Against libm in double, at 100,003 points of [0, 1) (a prime count, so no point falls on a
+    // quarter's edge by the grid alone) and at the edges and middles of the quarters and eighths,
+    // where the reduction to +-pi/4 changes quadrant: within 2e-7, float's own rounding.
+    const double two_pi = 2.0 * 3.14159265358979323846;
+    auto check = [&](float u) {
+        const vec3f c = unit_circle(u);
+        CHECK(std::fabs(c.x - std::cos(two_pi * double(u))) < 2e-7);
+        CHECK(std::fabs(c.y - std::sin(two_pi * double(u))) < 2e-7);
+        CHECK(c.z == 0.0f);
+    };
+    const int n = 100003;
+    double worst = 0;
+    for (int i = 0; i < n; ++i) {
+        const float u = float(i) / float(n);
+        const vec3f c = unit_circle(u);
+        worst = std::max({worst, std::fabs(c.x - std::cos(two_pi * double(u))), std::fabs(c.y - std::sin(two_pi * double(u)))});
+    }
+    CHECK(worst < 2e-7);
+    for (int k = 0; k < 8; ++k) {
+        const float edge = float(k) / 8.0f;
+        check(edge);
+        check(std::nextafter(edge, 1.0f));
+        if (k > 0) check(std::nextafter(edge, 0.0f));
+    }
+    check(0x1.fffffep-1f); // the largest u below 1: a point just short of a full turn
+    // The exact values at the quarter turns themselves.
+    CHECK(unit_circle(0.25f).x == 0.0f);
+    CHECK(unit_circle(0.25f).y == 1.0f);
+    CHECK(unit_circle(0.5f).x == -1.0f);
+    CHECK(unit_circle(0.75f).y == -1.0f);
+}
 
 TEST_CASE("sample_unit_sphere: unit vectors, uniform moments") {
     // Uniform on the sphere: E[x] = E[y] = E[z] = 0, E[x^2] = E[y^2] = E[z^2] = 1/3, E[xy] = 0.

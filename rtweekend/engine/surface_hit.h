@@ -43,7 +43,10 @@ namespace detail {
 // side wi points to. A scattering point inside a volume (in_volume) lies on no surface, so it has
 // nothing to escape from and the ray starts at the point itself (see trace_path).
 inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax, bool in_volume = false) {
-    const vec3f side = dot(wi, hit.normal) >= 0 ? hit.normal : -hit.normal;
+    // The normal, negated when wi goes below it: its sign bits flipped by a mask, not a branch
+    // (a glass sphere's rays go either way at random).
+    const uint32_t flip = uint32_t(!(dot(wi, hit.normal) >= 0)) << 31;
+    const vec3f side{flip_sign(hit.normal.x, flip), flip_sign(hit.normal.y, flip), flip_sign(hit.normal.z, flip)};
     ray3f r;
     r.origin = in_volume ? hit.p : offset_ray_origin(hit.p, side) + hit.offset * side;
     r.dir = wi;
