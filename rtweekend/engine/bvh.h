@@ -620,7 +620,13 @@ void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, uns
             const floatv far_limit = floatv::load(tmax);
             entry entered[8];
             float order[8];
-            int n = 0;
+            // First the eight tests, into a mask of the children entered; then only those. A
+            // branch on each child's test was mispredicted often (which children a packet
+            // enters is the scene's business); this walk's one branch per entered child ends
+            // its loop once.
+            floatv child_tnear[8];
+            unsigned child_lanes[8];
+            unsigned children = 0;
             for (int c = 0; c < 8; ++c) {
                 // The slab test of a ray's own walk (detail::intersect_node), lane by lane: each
                 // lane's near plane on an axis picked by its direction's sign, as bvh_ray picks it
@@ -635,11 +641,16 @@ void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, uns
                 const floatv tnear = max(max(near_t[0], near_t[1]), max(near_t[2], packet.tmin));
                 floatv tfar = min(min(far_t[0], far_t[1]), min(far_t[2], far_limit));
                 tfar = tfar * floatv(detail::bvh_far_scale);
-                const unsigned in = bits(tnear <= tfar) & lanes;
-                if (in == 0) continue;
-                entered[n] = {tnear, node.child[c], in};
-                order[n] = reduce_min(select(lanes_of(in), tnear, infinity)); // its nearest lane's entry
-                ++n;
+                child_tnear[c] = tnear;
+                child_lanes[c] = bits(tnear <= tfar) & lanes;
+                children |= unsigned(child_lanes[c] != 0) << c;
+            }
+            int n = 0;
+            for (unsigned m = children; m != 0; m &= m - 1, ++n) {
+                const int c = __builtin_ctz(m);
+                const int slot = n & 7; // n itself (eight bits, n < 8), as the compiler cannot tell
+                entered[slot] = {child_tnear[c], node.child[c], child_lanes[c]};
+                order[slot] = reduce_min(select(lanes_of(child_lanes[c]), child_tnear[c], infinity)); // its nearest lane's entry
             }
             if (n > 0) {
                 // Nearest child first; the others wait on the stack, farthest deepest.
