@@ -97,6 +97,7 @@ std::vector<ray3f> incoherent_rays(const compiled_scene& s, double spread, int c
         const point3 o(spread * (u() - 0.5), spread * (u() - 0.5), spread * (u() - 0.5));
         vec3 d(u() - 0.5, u() - 0.5, u() - 0.5);
         if (i % 17 == 3) d = vec3(0, 0, u() < 0.5 ? 1 : -1); // axis-aligned: zero components
+        if (i % 17 == 11) d = vec3(-0.0, u() < 0.5 ? -0.0 : 0.0, u() < 0.5 ? 1 : -1); // negative zeros: run down
         rays.push_back(ray_from(s, o, d, i % 5 == 1 ? float(spread * u()) : std::numeric_limits<float>::infinity()));
         if (i % 29 == 7) rays.back().dir = {std::numeric_limits<float>::quiet_NaN(), 0, 1}; // hits nothing
     }

@@ -147,7 +147,10 @@ struct bvh_packet {
     floatv inv[3], origin_inv[3], tmin;
     maskv negative[3];   // lanes whose ray runs down the axis: they enter a box by its high plane
     unsigned usable = 0; // lanes whose slab distances are finite (bvh_ray::usable)
-    bvh_packet(const ray3f* rays, int count);
+    // From the count rays in `rays` (lanes from count on are ignored); bit k of dir_signs[a] is
+    // the sign bit of ray k's direction on axis a (which a zero direction keeps: -0 runs down).
+    // Lane by lane, the same operations as bvh_ray's, so a lane's slabs are its ray's own.
+    bvh_packet(const ray_lanes& rays, const unsigned dir_signs[3], int count);
 };
 
 // Walks the tree for the lanes in `active` (bit k: lane k); tmax[k] is lane k's range, which the
@@ -574,24 +577,22 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
 }
 
 
-inline bvh_packet::bvh_packet(const ray3f* rays, int count) {
-    constexpr int W = int(floatv::width);
-    alignas(64) float lanes[7][W] = {};
-    for (int k = 0; k < count && k < W; ++k) {
-        const detail::bvh_ray r(rays[k]);
-        for (int a = 0; a < 3; ++a) {
-            lanes[a][k] = r.inv[a];
-            lanes[3 + a][k] = r.origin_inv[a];
-        }
-        lanes[6][k] = r.tmin;
-        if (r.usable) usable |= 1u << k;
-    }
+inline bvh_packet::bvh_packet(const ray_lanes& rays, const unsigned dir_signs[3], int count) {
+    const floatv origin[3] = {rays.ox, rays.oy, rays.oz}, dir[3] = {rays.dx, rays.dy, rays.dz};
+    const floatv tiny(1e-20f), largest(std::numeric_limits<float>::max());
+    maskv finite = first_lanes(unsigned(count));
     for (int a = 0; a < 3; ++a) {
-        inv[a] = floatv::load(lanes[a]);
-        origin_inv[a] = floatv::load(lanes[3 + a]);
+        // A component below 1e-20 in size becomes 1e-20 of its sign (bvh_ray says why).
+        const maskv is_tiny = (dir[a] < tiny) & (dir[a] > -tiny);
+        const floatv safe = select(is_tiny, select(lanes_of(dir_signs[a]), -tiny, tiny), dir[a]);
+        inv[a] = floatv(1.0f) / safe;
+        origin_inv[a] = origin[a] * inv[a];
         negative[a] = inv[a] < floatv(0.0f);
+        finite = finite & (inv[a] <= largest) & (inv[a] >= -largest) & (origin_inv[a] <= largest) &
+                 (origin_inv[a] >= -largest);
     }
-    tmin = floatv::load(lanes[6]);
+    usable = bits(finite);
+    tmin = rays.tmin;
 }
 
 template <class LeafTest>

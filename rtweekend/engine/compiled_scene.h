@@ -352,16 +352,17 @@ inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hi
             for (int k = 0; k < count; ++k) found[start + k] = intersect(r[k], hits[start + k]);
             continue;
         }
-        const bvh_packet packet(r, count);
         // The rays across lanes; lanes past count hold zeros (never garbage: no denormal or NaN
         // slows their arithmetic down), written only when there are such lanes.
         alignas(64) float lane[7][W];
         alignas(64) float t_best[W];
+        unsigned dir_signs[3] = {0, 0, 0};
         for (int k = 0; k < count; ++k) {
             lane[0][k] = r[k].origin.x, lane[1][k] = r[k].origin.y, lane[2][k] = r[k].origin.z;
             lane[3][k] = r[k].dir.x, lane[4][k] = r[k].dir.y, lane[5][k] = r[k].dir.z;
             lane[6][k] = r[k].tmin;
             t_best[k] = r[k].tmax;
+            for (int a = 0; a < 3; ++a) dir_signs[a] |= unsigned(std::signbit(r[k].dir[a])) << k;
         }
         for (int k = count; k < W; ++k) {
             for (int a = 0; a < 7; ++a) lane[a][k] = 0.0f;
@@ -369,6 +370,7 @@ inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hi
         }
         const ray_lanes lanes{floatv::load(lane[0]), floatv::load(lane[1]), floatv::load(lane[2]), floatv::load(lane[3]),
                               floatv::load(lane[4]), floatv::load(lane[5]), floatv::load(lane[6])};
+        const bvh_packet packet(lanes, dir_signs, count);
         hit_ref best[W];
         // What the kernels of shapes other than spheres keep per ray (leaf_state), made for the
         // packet's rays only when it meets such a leaf: a sphere packet never builds them.
