@@ -31,6 +31,14 @@ TEST_CASE("offset_ray_origin: hand-computed offsets") {
     CHECK(z.x == 0.0f);
     CHECK(z.y == 0.01f + 0x1p-16f * 0.6f);
     CHECK(z.z == -0.02f + 0x1p-16f * -0.8f);
+
+    // Negative zero (its bits are INT_MIN) is near the origin too: moved by 2^-16 per unit of
+    // normal either way, and the push by ulps it does not take must not overflow on the way (the
+    // sanitizer build checks that).
+    vec3f m = offset_ray_origin({-0.0f, -0.0f, -0.0f}, {-1, 0, 1});
+    CHECK(m.x == -0x1p-16f);
+    CHECK(m.y == 0.0f);
+    CHECK(m.z == 0x1p-16f);
 }
 
 TEST_CASE("offset_ray_origin: always moves to the normal's side, by a small amount") {

@@ -28,11 +28,14 @@ inline float offset_component(float p, float n) {
     constexpr float float_scale = 1.0f / 65536.0f;
     constexpr float int_scale = 256.0f;        // ulps per unit of normal
     const float by_distance = p + float_scale * n;
-    const int32_t of_i = static_cast<int32_t>(int_scale * n);
-    const int32_t negative = -static_cast<int32_t>(p < 0);                 // all bits set when p < 0
-    const int32_t by_ulps = float_as_int(p) + ((of_i ^ negative) - negative); // of_i, negated if p < 0
-    const int32_t near_origin = -static_cast<int32_t>(std::fabs(p) < origin);
-    return int_as_float((float_as_int(by_distance) & near_origin) | (by_ulps & ~near_origin));
+    // In unsigned arithmetic, which wraps: the sum is computed for every p, also where it is not
+    // kept (-0, whose bits are INT_MIN, pushed by a negative of_i, would overflow an int).
+    const uint32_t of_i = static_cast<uint32_t>(static_cast<int32_t>(int_scale * n));
+    const uint32_t negative = 0u - static_cast<uint32_t>(p < 0);                  // all bits set when p < 0
+    const uint32_t by_ulps = static_cast<uint32_t>(float_as_int(p)) + ((of_i ^ negative) - negative); // of_i, negated if p < 0
+    const uint32_t near_origin = 0u - static_cast<uint32_t>(std::fabs(p) < origin);
+    const uint32_t kept = (static_cast<uint32_t>(float_as_int(by_distance)) & near_origin) | (by_ulps & ~near_origin);
+    return int_as_float(static_cast<int32_t>(kept));
 }
 } // namespace detail
 
