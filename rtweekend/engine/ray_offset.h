@@ -10,15 +10,12 @@
 #include "vec3f.h"
 
 #include <cstdint>
-#include <cstring>
 
 namespace rt {
 
 namespace detail {
-inline int32_t float_as_int(float f) { int32_t i; std::memcpy(&i, &f, sizeof i); return i; }
-inline float int_as_float(int32_t i) { float f; std::memcpy(&f, &i, sizeof f); return f; }
 // f with its sign bit flipped where `mask` has it set (mask: 0 or 1u << 31): -f or f, no branch.
-inline float flip_sign(float f, uint32_t mask) { return int_as_float(float_as_int(f) ^ static_cast<int32_t>(mask)); }
+inline float flip_sign(float f, uint32_t mask) { return bits_float(float_bits(f) ^ mask); }
 
 // Both pushes are computed and one is kept by a bit mask, not a branch (the compiler makes a
 // branch of a ?: here): which one a component takes depends on where the path happens to be, and
@@ -31,11 +28,10 @@ inline float offset_component(float p, float n) {
     // In unsigned arithmetic, which wraps: the sum is computed for every p, also where it is not
     // kept (-0, whose bits are INT_MIN, pushed by a negative of_i, would overflow an int).
     const uint32_t of_i = static_cast<uint32_t>(static_cast<int32_t>(int_scale * n));
-    const uint32_t negative = 0u - static_cast<uint32_t>(p < 0);                  // all bits set when p < 0
-    const uint32_t by_ulps = static_cast<uint32_t>(float_as_int(p)) + ((of_i ^ negative) - negative); // of_i, negated if p < 0
+    const uint32_t negative = 0u - static_cast<uint32_t>(p < 0); // all bits set when p < 0
+    const uint32_t by_ulps = float_bits(p) + ((of_i ^ negative) - negative); // of_i, negated if p < 0
     const uint32_t near_origin = 0u - static_cast<uint32_t>(std::fabs(p) < origin);
-    const uint32_t kept = (static_cast<uint32_t>(float_as_int(by_distance)) & near_origin) | (by_ulps & ~near_origin);
-    return int_as_float(static_cast<int32_t>(kept));
+    return bits_float((float_bits(by_distance) & near_origin) | (by_ulps & ~near_origin));
 }
 } // namespace detail
 

@@ -9,16 +9,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 namespace rt {
 
 inline constexpr float pi_f = static_cast<float>(pi);
-
-namespace detail {
-inline uint32_t float_bits(float f) { uint32_t u; std::memcpy(&u, &f, sizeof u); return u; }
-inline float bits_float(uint32_t u) { float f; std::memcpy(&f, &u, sizeof f); return f; }
-} // namespace detail
 
 // (cos 2 pi u, sin 2 pi u) for u in [0, 1): a point of the unit circle at the fraction u of a
 // turn. Renders draw one per bounce, and libm's sincosf is a function call of some 40 cycles;
@@ -35,10 +29,10 @@ inline vec3f unit_circle(float u) {
     // swap the two for odd q and flip the signs (x for q = 1, 2; y for q = 2, 3).
     const uint32_t q = static_cast<uint32_t>(quarter) & 3u;
     const uint32_t swap = 0u - (q & 1u); // all bits set for odd q
-    const uint32_t cb = detail::float_bits(c), sb = detail::float_bits(s);
+    const uint32_t cb = float_bits(c), sb = float_bits(s);
     const uint32_t xb = ((cb & ~swap) | (sb & swap)) ^ ((((q + 1u) >> 1) & 1u) << 31);
     const uint32_t yb = ((sb & ~swap) | (cb & swap)) ^ (((q >> 1) & 1u) << 31);
-    return {detail::bits_float(xb), detail::bits_float(yb), 0};
+    return {bits_float(xb), bits_float(yb), 0};
 }
 
 // Uniform on the unit sphere: z uniform on [-1, 1] (Archimedes' hat-box theorem), phi uniform.

@@ -5,6 +5,8 @@
 #include "../vec3.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace rt {
 
@@ -15,6 +17,11 @@ template <class T>
 constexpr T fmax_inline(T a, T b) { return b > a || a != a ? b : a; }
 template <class T>
 constexpr T fmin_inline(T a, T b) { return b < a || a != a ? b : a; }
+
+// A float's bits as an unsigned integer and back, for the branch-free selects and sign flips of
+// the hot loop (ray_offset.h, sampling.h): integer masks where the compiler would branch.
+inline uint32_t float_bits(float f) { uint32_t u; std::memcpy(&u, &f, sizeof u); return u; }
+inline float bits_float(uint32_t u) { float f; std::memcpy(&f, &u, sizeof f); return f; }
 
 struct vec3f {
     float x = 0, y = 0, z = 0;
