@@ -243,10 +243,13 @@ TEST_CASE("render_samples: a stop raised by another thread during a two-thread r
 
 TEST_CASE("render_samples, batched: a stop leaves every pixel the whole of the passes it took part in"
           * doctest::test_suite("threads")) {
-    // Batches hold several pixels' samples (a pass of 2 samples: 8 pixels a batch); the flag rises
-    // during the batch that holds pixel 100 of tile 0 in the third pass (samples 2 and 3). That
-    // batch, pixels 96..103, finishes whole, and the render stops before the next pixel: on one
-    // thread pixels 0..103 of tile 0 took four samples, every other pixel two.
+    // Batches hold several pixels' samples (a pass of 2 samples: capacity / 2 pixels a batch, 16
+    // for a batch of 32); the flag rises during the batch that holds pixel 100 of tile 0 in the
+    // third pass (samples 2 and 3). That batch finishes whole (pixels 96..111 for 16 a batch), and
+    // the render stops before the next pixel: on one thread pixels 0..last of tile 0 took four
+    // samples, every other pixel two.
+    const int pixels_per_batch = sample_batch::capacity / 2;
+    const int last = (100 / pixels_per_batch + 1) * pixels_per_batch - 1;
     for (int threads : {1, 2}) {
         render_settings s = one_thread(8);
         s.threads = threads;
@@ -272,7 +275,7 @@ TEST_CASE("render_samples, batched: a stop leaves every pixel the whole of the p
                 CHECK((n == 2 || n == 4));
                 CHECK(c.y() == x);
                 sum += uint64_t(n);
-                if (threads == 1) CHECK(n == (x < 16 && y * 16 + x <= 103 ? 4 : 2));
+                if (threads == 1) CHECK(n == (x < 16 && y * 16 + x <= last ? 4 : 2));
             }
         CHECK(sum == r.stats.samples);
         CHECK(r.stats.min_pixel_samples == 2);

@@ -165,13 +165,21 @@ TEST_CASE("sample_cosine_direction: density cos(theta)/pi about the normal") {
     CHECK(smu2 / N == doctest::Approx(0.5).epsilon(1e-3));
     CHECK(low / N == doctest::Approx(0.25).epsilon(2e-3));
 
-    // Degenerate draw: u1 = 1 gives the sphere point (0,0,-1) = -n for n = +z; n + that is zero,
-    // and the warp falls back to n itself.
-    vec3f up(0, 0, 1);
-    vec3f d = sample_cosine_direction(up, 1.0f, 0.0f);
-    CHECK(d.x == 0);
-    CHECK(d.y == 0);
-    CHECK(d.z == 1);
+    // The ends of u1: 0 is the normal itself, exactly; 1 a grazing direction (cos theta = 0),
+    // still of unit length. u2 = 1/4 turns a quarter of the way round the disk: from the point
+    // at u2 = 0 (x, e1 direction) to e2 = n x e1 (frame_across is right-handed).
+    const vec3f d0 = sample_cosine_direction(n, 0.0f, 0.3f);
+    CHECK(d0.x == n.x);
+    CHECK(d0.y == n.y);
+    CHECK(d0.z == n.z);
+    const vec3f a = sample_cosine_direction(n, 1.0f, 0.0f), b = sample_cosine_direction(n, 1.0f, 0.25f);
+    CHECK(std::fabs(dot(a, n)) < 1e-6f);
+    CHECK(std::fabs(dot(b, n)) < 1e-6f);
+    CHECK(std::fabs(dot(a, b)) < 1e-6f);
+    const vec3f axb = cross(a, b);
+    CHECK(axb.x == doctest::Approx(n.x).epsilon(1e-5));
+    CHECK(axb.y == doctest::Approx(n.y).epsilon(1e-5));
+    CHECK(axb.z == doctest::Approx(n.z).epsilon(1e-5));
 }
 
 } // namespace test_sampling

@@ -86,7 +86,7 @@ struct camera_frame {
         const vec3f to = x - lens;
         const float d2 = length_squared(to);
         if (!(d2 > 0) || !(h > 0)) return false;
-        c.distance = std::sqrt(d2);
+        c.distance = sqrt_f(d2);
         c.dir = to / c.distance;
         const float cos_theta = dot(normal, c.dir);
         if (!(cos_theta > 0)) return false;
@@ -111,7 +111,7 @@ inline void camera_frame::sample_rays(int n, const int* x, const int* y, pixel_s
     constexpr int W = int(floatv::width);
     static_assert(lanes % W == 0, "a batch is a whole number of SIMD registers");
     sample_lanes numbers(samplers, n);
-    alignas(64) float px[lanes], py[lanes], lu[lanes] = {}, lv[lanes] = {}, dir[3][lanes], org[3][lanes];
+    alignas(64) float px[lanes] = {}, py[lanes] = {}, lu[lanes] = {}, lv[lanes] = {}, dir[3][lanes], org[3][lanes];
     // The point in the pixel: uniform over it, or its centre for a single sample.
     if (samples_per_pixel > 1) {
         numbers.get2d(sample_dimension::camera_pixel, px, py);

@@ -328,7 +328,7 @@ inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, 
     auto transmitted = [&](float cos_theta, bool front_face) {
         const float ri = front_face ? 1.0f / m.refraction_index : m.refraction_index;
         cos_theta = fmin_inline(cos_theta, 1.0f);
-        const float sin_theta = std::sqrt(fmax_inline(0.0f, 1.0f - cos_theta * cos_theta));
+        const float sin_theta = sqrt_f(fmax_inline(0.0f, 1.0f - cos_theta * cos_theta));
         if (ri * sin_theta > 1.0f) return 0.0f;
         return 1.0f - schlick_reflectance(cos_theta, ri);
     };

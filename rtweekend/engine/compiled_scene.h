@@ -337,10 +337,11 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
 
 inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hit* hits, bool* found) const {
     constexpr int W = int(floatv::width);
-    // Below this many rays a packet's tests (eight boxes for every lane a node) cost more
-    // instructions than the rays' own walks: 4 % fewer on the cover than packets of any size
-    // (callgrind, an AVX2 build: 544M -> 524M instructions at 2 spp).
-    constexpr int min_packet = 4;
+    // Below this many rays a packet's tests (eight boxes for every lane a node) cost more than
+    // the rays' own walks: 4 packets were 4 % fewer instructions on the cover than packets of
+    // any size (callgrind, an AVX2 build: 544M -> 524M at 2 spp); on an AMD EPYC (Zen 4, whose
+    // 512-bit instructions run as two halves) 6 and 8 measured 1.5 % faster than 4, 11 slower.
+    constexpr int min_packet = 6;
     if (W == 1 || calls_user_code()) {
         for (int k = 0; k < n; ++k) found[k] = intersect(rays[k], hits[k]);
         return;

@@ -147,7 +147,7 @@ inline bool finish_area_sample(const vec3f& p, const vec3f& y, const vec3f& n, f
     const vec3f to = y - p;
     const float d2 = length_squared(to);
     if (!(d2 > 0)) return false;
-    s.distance = std::sqrt(d2);
+    s.distance = sqrt_f(d2);
     s.wi = to / s.distance;
     s.y = y;
     s.n = n;
@@ -160,7 +160,7 @@ inline bool finish_area_sample(const vec3f& p, const vec3f& y, const vec3f& n, f
 // theta_max ~ 3e-4 rad in float).
 inline float sphere_cone_one_minus_cos(float d2, float r) {
     const float sin2_max = r * r / d2;
-    return sin2_max / (1.0f + std::sqrt(fmax_inline(0.0f, 1.0f - sin2_max)));
+    return sin2_max / (1.0f + sqrt_f(fmax_inline(0.0f, 1.0f - sin2_max)));
 }
 
 // 1 / x when that is a finite positive density, else 0.
@@ -214,7 +214,7 @@ inline spherical_rectangle make_spherical_rectangle(const vec3f& p, const vec3f&
     const vec3f normal = cross(u, v);
     const float normal_length = length(normal);
     if (!(normal_length > 0) || !std::isfinite(normal_length)) return r;
-    const float u_length = std::sqrt(uu);
+    const float u_length = sqrt_f(uu);
     r.ex = u / u_length;
     r.ez = normal / normal_length;
     r.ey = cross(r.ez, r.ex);
@@ -232,8 +232,8 @@ inline spherical_rectangle make_spherical_rectangle(const vec3f& p, const vec3f&
     const float z0 = r.z0, z2 = z0 * z0, az = -z0;
     const float x0 = r.x0, x1 = r.x1, y0 = r.y0, y1 = r.y1;
     // |corner| for the four corners (x0|x1, y0|y1, z0).
-    const float c00 = std::sqrt(x0 * x0 + y0 * y0 + z2), c10 = std::sqrt(x1 * x1 + y0 * y0 + z2);
-    const float c11 = std::sqrt(x1 * x1 + y1 * y1 + z2), c01 = std::sqrt(x0 * x0 + y1 * y1 + z2);
+    const float c00 = sqrt_f(x0 * x0 + y0 * y0 + z2), c10 = sqrt_f(x1 * x1 + y0 * y0 + z2);
+    const float c11 = sqrt_f(x1 * x1 + y1 * y1 + z2), c01 = sqrt_f(x0 * x0 + y1 * y1 + z2);
     // The corners in the order of the paper's angles g0..g3: (x1, y0), (x1, y1), (x0, y1), (x0, y0).
     const float delta0 = std::atan2(x1 * y0, az * c10);
     const float delta1 = std::atan2(-x1 * y1, az * c11);
@@ -241,8 +241,8 @@ inline spherical_rectangle make_spherical_rectangle(const vec3f& p, const vec3f&
     const float delta3 = std::atan2(-x0 * y0, az * c00);
     r.delta01 = delta0 + delta1;
     r.delta23 = delta2 + delta3;
-    r.b0 = -y0 / std::sqrt(y0 * y0 + z2);
-    r.b1 = y1 / std::sqrt(y1 * y1 + z2);
+    r.b0 = -y0 / sqrt_f(y0 * y0 + z2);
+    r.b1 = y1 / sqrt_f(y1 * y1 + z2);
     const float omega = -(r.delta01 + r.delta23);
     r.solid_angle = omega > 0 && std::isfinite(omega) ? omega : 0.0f;
     r.accurate = well_conditioned(r, std::fabs(delta0) + std::fabs(delta1) + std::fabs(delta2) + std::fabs(delta3));
@@ -257,17 +257,17 @@ inline void sample_spherical_rectangle(const spherical_rectangle& r, float u1, f
     const float beta = (1.0f - u1) * r.delta23 - u1 * r.delta01;
     const float fu = (std::cos(beta) * r.b0 + r.b1) / std::sin(beta);
     // cu: the cosine of the angle of the plane through p that splits off the fraction u1.
-    float cu = std::copysign(1.0f, fu) / std::sqrt(fu * fu + r.b0 * r.b0);
+    float cu = std::copysign(1.0f, fu) / sqrt_f(fu * fu + r.b0 * r.b0);
     cu = fmin_inline(fmax_inline(cu, -1.0f), 1.0f);
-    float xu = -(cu * r.z0) / std::sqrt(fmax_inline(0.0f, 1.0f - cu * cu));
+    float xu = -(cu * r.z0) / sqrt_f(fmax_inline(0.0f, 1.0f - cu * cu));
     if (!(xu >= r.x0)) xu = r.x0; // also catches the NaN of cu = +-1
     if (xu > r.x1) xu = r.x1;
     // Along that line the solid angle is uniform in the sine of the elevation h.
-    const float dd = std::sqrt(xu * xu + r.z0 * r.z0);
-    const float h0 = r.y0 / std::sqrt(dd * dd + r.y0 * r.y0);
-    const float h1 = r.y1 / std::sqrt(dd * dd + r.y1 * r.y1);
+    const float dd = sqrt_f(xu * xu + r.z0 * r.z0);
+    const float h0 = r.y0 / sqrt_f(dd * dd + r.y0 * r.y0);
+    const float h1 = r.y1 / sqrt_f(dd * dd + r.y1 * r.y1);
     const float hv = h0 + u2 * (h1 - h0), hv2 = hv * hv;
-    const float yv = hv2 < 1.0f - 1e-6f ? hv * dd / std::sqrt(1.0f - hv2) : r.y1;
+    const float yv = hv2 < 1.0f - 1e-6f ? hv * dd / sqrt_f(1.0f - hv2) : r.y1;
     a = fmin_inline(fmax_inline(xu - r.x0, 0.0f), r.x1 - r.x0);
     b = fmin_inline(fmax_inline(yv - r.y0, 0.0f), r.y1 - r.y0);
 }
@@ -282,7 +282,7 @@ inline bool quad_looks_large(const vec3f& p, const vec3f& Q, const vec3f& u, con
     const vec3f to = Q + 0.5f * (u + v) - p;
     const float d2 = length_squared(to);
     // |normal| = A, so |normal . to| = A d_c |cos theta_c|.
-    return std::fabs(dot(normal, to)) >= quad_solid_angle_worth * d2 * std::sqrt(d2);
+    return std::fabs(dot(normal, to)) >= quad_solid_angle_worth * d2 * sqrt_f(d2);
 }
 
 // The choice sample_quad_light and quad_light_pdf both make: true (and r the spherical rectangle)
@@ -308,7 +308,7 @@ inline bool sample_rectangle(const spherical_rectangle& r, const vec3f& p, const
     const vec3f to = y - p;
     const float d2 = length_squared(to);
     if (!(d2 > 0) || !is_finite(y)) return false;
-    s.distance = std::sqrt(d2);
+    s.distance = sqrt_f(d2);
     s.wi = to / s.distance;
     s.y = y;
     s.n = normalize(cross(u, v));
@@ -337,7 +337,7 @@ inline barycentric uniform_triangle_point(float u1, float u2) {
 inline float area_to_solid_angle(float area_pdf, const vec3f& p, const vec3f& y, const vec3f& ny) {
     const vec3f to = y - p;
     const float d2 = length_squared(to);
-    const float cos_y = std::fabs(dot(ny, to)) / std::sqrt(d2);
+    const float cos_y = std::fabs(dot(ny, to)) / sqrt_f(d2);
     const float pdf = area_pdf * d2 / cos_y;
     return cos_y > 0 && std::isfinite(pdf) ? pdf : 0.0f;
 }
@@ -363,7 +363,7 @@ inline bool sample_sphere_light(const vec3f& p, const vec3f& c, float r, float u
     const float one_minus_cos_max = detail::sphere_cone_one_minus_cos(d2, r);
     const float pdf = detail::density_from_measure(2.0f * pi_f * one_minus_cos_max);
     if (!(pdf > 0)) return false; // too small or far for float to see
-    const float d = std::sqrt(d2);
+    const float d = sqrt_f(d2);
     const vec3f w = to_centre / d;
     const float sin_max = r / d, sin2_max = sin_max * sin_max;
     // theta uniform in cos over [cos theta_max, 1], kept as t = 1 - cos theta (exact for narrow
@@ -371,7 +371,7 @@ inline bool sample_sphere_light(const vec3f& p, const vec3f& c, float r, float u
     const float t = u1 * one_minus_cos_max;
     const float cos_theta = 1.0f - t;
     const float sin2_theta = t * (2.0f - t);
-    const float sin_theta = std::sqrt(sin2_theta);
+    const float sin_theta = sqrt_f(sin2_theta);
     // The point is placed by the angle alpha at the centre between p and y, rather than by
     // intersecting the ray, so it lies on the sphere even when the sphere is tiny beside d. In the
     // triangle (p, c, y) the angle at y has sine sin theta / sin theta_max (law of sines) and is
@@ -380,7 +380,7 @@ inline bool sample_sphere_light(const vec3f& p, const vec3f& c, float r, float u
     //   sin alpha = sin theta cos^2 theta_max / (sin theta_max (cos theta + sin theta_max B)),
     // the second being sin theta (cos theta / sin theta_max - B) with the difference multiplied
     // out: every term is positive, so neither cancels.
-    const float B = std::sqrt(fmax_inline(0.0f, 1.0f - fmin_inline(1.0f, sin2_theta / sin2_max)));
+    const float B = sqrt_f(fmax_inline(0.0f, 1.0f - fmin_inline(1.0f, sin2_theta / sin2_max)));
     const float cos_alpha = sin2_theta / sin_max + cos_theta * B;
     const float sin_alpha = sin_theta * (1.0f - sin2_max) / (sin_max * (cos_theta + sin_max * B));
     vec3f e1, e2;
@@ -391,7 +391,7 @@ inline bool sample_sphere_light(const vec3f& p, const vec3f& c, float r, float u
     const vec3f to = y - p;
     const float dist2 = length_squared(to);
     if (!(dist2 > 0) || !is_finite(y)) return false;
-    s.distance = std::sqrt(dist2);
+    s.distance = sqrt_f(dist2);
     s.wi = to / s.distance;
     s.y = y;
     s.n = n;

@@ -210,7 +210,7 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
         const vec3f to = l.p0 - p;
         const float d2 = length_squared(to);
         if (!(d2 > 0)) return false;
-        s.wi = to / std::sqrt(d2);
+        s.wi = to / sqrt_f(d2);
         s.y = l.p0;
         s.radiance = l.emission / d2;
         s.pdf = pmf;
@@ -258,7 +258,7 @@ inline bool light_set::meet(const light& l, const vec3f& p, const vec3f& wi, vec
         const vec3f perp = oc - h * wi;
         const float disc = l.radius * l.radius - length_squared(perp);
         if (!(disc >= 0)) return false;
-        const float s = std::sqrt(disc);
+        const float s = sqrt_f(disc);
         float t = h - s;
         if (!(t > 0)) t = h + s;
         if (!(t > 0)) return false;

@@ -179,6 +179,9 @@ class camera_path {
     }
 
     bool done() const { return done_; }
+    // Scattering events so far: the bounce whose dimensions (sample_dimension::bounce) the path
+    // draws from next.
+    int bounces() const { return depth; }
     const ray3f& ray() const { return r; }
     const vec3f& radiance_so_far() const { return radiance; }
     // One bounce: ray() hit `hit` if `found`, else it left the scene.
@@ -404,7 +407,7 @@ void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMa
         const vec3f to = x.p - hit.p;
         const float d2 = length_squared(to);
         if (!(d2 > 0)) continue;
-        const vec3f dir = to / std::sqrt(d2);
+        const vec3f dir = to / sqrt_f(d2);
         const vec3f f_v = vm.eval(dir);
         if (is_black(f_v)) continue;
         // x as seen from v: normals on v's side.
@@ -497,6 +500,15 @@ RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, con
         while (n > 0) {
             for (int i = 0; i < n; ++i) next[i] = paths[live[i]].ray();
             scene.intersect_batch(n, next, hits, found);
+            // The live paths are all at one bounce (they started together and each advance is
+            // one): their directions' Sobol pairs together, for about what two cost one by one.
+            if (n >= 3) {
+                pixel_sampler* live_samplers[sample_batch::capacity];
+                for (int i = 0; i < n; ++i) live_samplers[i] = lanes[live[i]];
+                sample_lanes numbers(live_samplers, n);
+                if (numbers.vectorised())
+                    numbers.prepare2d(sample_dimension::bounce(paths[live[0]].bounces()) + sample_dimension::direction);
+            }
             int still = 0;
             for (int i = 0; i < n; ++i) {
                 detail::camera_path<E, false>& path = paths[live[i]];

@@ -7,6 +7,7 @@
 // Self-Intersection", Ray Tracing Gems (2019), ch. 6. Far from the origin the push is a fixed
 // number of float ulps; near the origin, where ulps vanish, it is a small absolute distance.
 
+#include "force_inline.h"
 #include "vec3f.h"
 
 #include <cstdint>
@@ -20,7 +21,7 @@ inline float flip_sign(float f, uint32_t mask) { return bits_float(float_bits(f)
 // Both pushes are computed and one is kept by a bit mask, not a branch (the compiler makes a
 // branch of a ?: here): which one a component takes depends on where the path happens to be, and
 // the branch was mispredicted often enough to matter.
-inline float offset_component(float p, float n) {
+RTWEEKEND_FORCE_INLINE float offset_component(float p, float n) {
     constexpr float origin = 1.0f / 32.0f;     // below this magnitude, offset by a distance
     constexpr float float_scale = 1.0f / 65536.0f;
     constexpr float int_scale = 256.0f;        // ulps per unit of normal
@@ -37,7 +38,7 @@ inline float offset_component(float p, float n) {
 
 // The point p moved off the surface along the unit normal n (n points to the side the new ray
 // leaves into).
-inline vec3f offset_ray_origin(const vec3f& p, const vec3f& n) {
+RTWEEKEND_FORCE_INLINE vec3f offset_ray_origin(const vec3f& p, const vec3f& n) {
     return {detail::offset_component(p.x, n.x), detail::offset_component(p.y, n.y),
             detail::offset_component(p.z, n.z)};
 }

@@ -31,6 +31,7 @@
 // samples. Numbers a decision draws beyond its dimension (a material that asks for more than its
 // block holds) come from the sample's PCG stream.
 
+#include "force_inline.h"
 #include "rng.h"
 
 #if defined(__GFNI__) && defined(__SSE2__)
@@ -111,12 +112,22 @@ class pixel_sampler {
     pixel_sampler(const sampler_plan& plan, int x, int y, int sample, pcg32& rng);
 
     float get1d(uint32_t dimension);
-    uniform2 get2d(uint32_t dimension);
+    uniform2 get2d(uint32_t dimension) { return dimension == held_dimension_ ? held_ : compute2d(dimension); }
     pcg32& rng() { return rng_; }
+
+    // The pair get2d(dimension) gives, computed ahead (sample_lanes::prepare2d, for many samples
+    // at once): get2d returns it without computing it again.
+    void hold2d(uint32_t dimension, uniform2 value) {
+        held_dimension_ = dimension;
+        held_ = value;
+    }
 
   private:
     friend class sample_lanes;
+    uniform2 compute2d(uint32_t dimension);
     const sampler_plan& plan_;
+    uint32_t held_dimension_ = ~0u; // hold2d's pair, or none
+    uniform2 held_{0, 0};
     uint32_t pixel_hash_;    // stratified: this pixel, hashed
     uint32_t sample_;
     uint32_t reversed_index_; // sobol: the Morton-curve index (below), its bits reversed
@@ -131,13 +142,21 @@ class pixel_sampler {
 // the instructions of two taken one at a time); other samplers are asked lane by lane.
 class sample_lanes {
   public:
-    static constexpr int capacity = 16;
+    static constexpr int capacity = 32;
+    static constexpr int block_lanes = 16; // lanes computed together (capacity is a multiple)
     // All samplers share one plan; count <= capacity.
     sample_lanes(pixel_sampler* const* samplers, int count);
-    // Fill u[k] (u1[k], u2[k]) for k < count; each array holds `capacity` floats (the lanes past
-    // count are written too, with numbers of no sample).
+    // Fill u[k] (u1[k], u2[k]) for k < count; each array holds `capacity` floats (lanes past
+    // count, up to the next multiple of block_lanes, are written too, with numbers of no sample).
     void get1d(uint32_t dimension, float* u);
     void get2d(uint32_t dimension, float* u1, float* u2);
+    // Whether the lanes compute their numbers together (Sobol numbers with 32-bit indices);
+    // else each lane is asked in turn, which saves nothing over asking it later.
+    bool vectorised() const { return vectorised_; }
+    // get2d(dimension) of every lane, handed to its sampler (pixel_sampler::hold2d), where that
+    // sampler's own get2d(dimension) will find it: the path tracer's bounces, whose paths all
+    // draw their direction from one dimension.
+    void prepare2d(uint32_t dimension);
 
   private:
     pixel_sampler* const* samplers_;
@@ -155,11 +174,11 @@ class dimension_uniforms {
     dimension_uniforms(pixel_sampler& s, uint32_t dim1, uint32_t dim2, uint32_t dim1_extra = stream,
                        uint32_t dim2_extra = stream)
         : s_(s), dims1_{dim1, dim1_extra}, dims2_{dim2, dim2_extra} {}
-    float next_float() {
+    RTWEEKEND_FORCE_INLINE float next_float() {
         const uint32_t d = used1_ < 2 ? dims1_[used1_++] : stream;
         return d != stream ? s_.get1d(d) : s_.rng().next_float();
     }
-    uniform2 next_2d() {
+    RTWEEKEND_FORCE_INLINE uniform2 next_2d() {
         const uint32_t d = used2_ < 2 ? dims2_[used2_++] : stream;
         return d != stream ? s_.get2d(d) : draw_2d(s_.rng());
     }
@@ -386,7 +405,7 @@ inline float pixel_sampler::get1d(uint32_t dimension) {
     return rng_.next_float();
 }
 
-inline uniform2 pixel_sampler::get2d(uint32_t dimension) {
+inline uniform2 pixel_sampler::compute2d(uint32_t dimension) {
     switch (plan_.kind) {
     case sampler_kind::independent: break;
     case sampler_kind::stratified: {
@@ -431,12 +450,14 @@ inline void sample_lanes::get1d(uint32_t dimension, float* u) {
     }
     const uint64_t h = samplers_[0]->plan_.dimension_hash(dimension);
     const uint32_t salt = uint32_t(h), scramble = uint32_t(h >> 32);
-    for (int k = 0; k < capacity; ++k) { // all lanes: a fixed trip count vectorises whole
-        const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_[k], salt);
-        const uint32_t v = detail::reverse_bits32_by_shifts(
-            detail::laine_karras_hash(detail::reverse_bits32_by_shifts(reversed), scramble));
-        u[k] = detail::fraction_to_float(v);
-    }
+    // Blocks of sixteen lanes, as many as hold count: a fixed trip count vectorises whole.
+    for (int block = 0; block < count_; block += block_lanes)
+        for (int k = block; k < block + block_lanes; ++k) {
+            const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_[k], salt);
+            const uint32_t v = detail::reverse_bits32_by_shifts(
+                detail::laine_karras_hash(detail::reverse_bits32_by_shifts(reversed), scramble));
+            u[k] = detail::fraction_to_float(v);
+        }
 }
 
 inline void sample_lanes::get2d(uint32_t dimension, float* u1, float* u2) {
@@ -450,14 +471,21 @@ inline void sample_lanes::get2d(uint32_t dimension, float* u1, float* u2) {
     }
     const uint64_t h = samplers_[0]->plan_.dimension_hash(dimension);
     const uint32_t salt = uint32_t(h), scramble0 = uint32_t(h >> 32), scramble1 = scramble0 * 0x9e3779b9u + 0x7f4a7c15u;
-    for (int k = 0; k < capacity; ++k) {
-        const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_[k], salt);
-        const uint32_t index = detail::reverse_bits32_by_shifts(reversed);
-        const uint32_t x = detail::laine_karras_hash(index, scramble0);
-        const uint32_t y = detail::laine_karras_hash(detail::sobol_dimension1_reversed(index), scramble1);
-        u1[k] = detail::fraction_to_float(detail::reverse_bits32_by_shifts(x));
-        u2[k] = detail::fraction_to_float(detail::reverse_bits32_by_shifts(y));
-    }
+    for (int block = 0; block < count_; block += block_lanes)
+        for (int k = block; k < block + block_lanes; ++k) {
+            const uint32_t reversed = detail::reversed_zsobol_index(reversed_index_[k], salt);
+            const uint32_t index = detail::reverse_bits32_by_shifts(reversed);
+            const uint32_t x = detail::laine_karras_hash(index, scramble0);
+            const uint32_t y = detail::laine_karras_hash(detail::sobol_dimension1_reversed(index), scramble1);
+            u1[k] = detail::fraction_to_float(detail::reverse_bits32_by_shifts(x));
+            u2[k] = detail::fraction_to_float(detail::reverse_bits32_by_shifts(y));
+        }
+}
+
+inline void sample_lanes::prepare2d(uint32_t dimension) {
+    alignas(64) float u1[capacity], u2[capacity];
+    get2d(dimension, u1, u2);
+    for (int k = 0; k < count_; ++k) samplers_[k]->hold2d(dimension, {u1[k], u2[k]});
 }
 
 } // namespace rt

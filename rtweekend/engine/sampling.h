@@ -18,7 +18,7 @@ inline constexpr float pi_f = static_cast<float>(pi);
 // turn. Renders draw one per bounce, and libm's sincosf is a function call of some 40 cycles;
 // this reduces to an eighth of a turn and evaluates the Taylor polynomials there (degree 9 and
 // 8: truncation error below 3e-8, under float's own rounding), then rotates by quarter turns.
-inline vec3f unit_circle(float u) {
+RTWEEKEND_FORCE_INLINE vec3f unit_circle(float u) {
     float quarter = std::nearbyint(4.0f * u);   // nearest quarter turn: 0..4
     float x = (u - 0.25f * quarter) * (2.0f * pi_f); // |x| <= pi / 4
     float x2 = x * x;
@@ -36,9 +36,9 @@ inline vec3f unit_circle(float u) {
 }
 
 // Uniform on the unit sphere: z uniform on [-1, 1] (Archimedes' hat-box theorem), phi uniform.
-inline vec3f sample_unit_sphere(float u1, float u2) {
+RTWEEKEND_FORCE_INLINE vec3f sample_unit_sphere(float u1, float u2) {
     float z = 1.0f - 2.0f * u1;
-    float s = std::sqrt(fmax_inline(0.0f, 1.0f - z * z));
+    float s = sqrt_f(fmax_inline(0.0f, 1.0f - z * z));
     vec3f circle = unit_circle(u2);
     return {s * circle.x, s * circle.y, z};
 }
@@ -49,7 +49,7 @@ inline vec3f sample_unit_ball(float u1, float u2, float u3) { return std::cbrt(u
 
 // Uniform on the unit disk (z = 0): radius sqrt(u1) makes the area density constant.
 inline vec3f sample_unit_disk(float u1, float u2) {
-    float r = std::sqrt(u1);
+    float r = sqrt_f(u1);
     vec3f circle = unit_circle(u2);
     return {r * circle.x, r * circle.y, 0.0f};
 }
@@ -57,7 +57,7 @@ inline vec3f sample_unit_disk(float u1, float u2) {
 // An orthonormal basis (e1, e2) across the unit vector w, without a branch on w's direction:
 // Duff, Burgess, Christensen, Hery, Kensler, Liani and Villemin, "Building an Orthonormal Basis,
 // Revisited", JCGT 6(1), 2017. (e1, e2, w) is right-handed.
-inline void frame_across(const vec3f& w, vec3f& e1, vec3f& e2) {
+RTWEEKEND_FORCE_INLINE void frame_across(const vec3f& w, vec3f& e1, vec3f& e2) {
     const float sign = std::copysign(1.0f, w.z);
     const float a = -1.0f / (sign + w.z);
     const float b = w.x * w.y * a;
@@ -65,14 +65,19 @@ inline void frame_across(const vec3f& w, vec3f& e1, vec3f& e2) {
     e2 = {b, sign + w.y * w.y * a, -w.y};
 }
 
-// Cosine-weighted direction about the unit normal n: n plus a uniform unit vector, normalised,
-// has density cos(theta)/pi (the book's Lambertian construction). The degenerate case where the
-// two cancel falls back to n.
-inline vec3f sample_cosine_direction(const vec3f& n, float u1, float u2) {
-    vec3f d = n + sample_unit_sphere(u1, u2);
-    float len2 = length_squared(d);
-    if (!(len2 > 1e-12f)) return n;
-    return d * (1.0f / std::sqrt(len2));
+// Cosine-weighted direction about the unit normal n (density cos(theta)/pi): a uniform point of
+// the unit disk across n lifted onto the hemisphere (Malley's method; pbrt, 4th ed., 13.6.3).
+// The disk point's radius sqrt(u1) and the height sqrt(1 - u1) come from u1 directly and the
+// frame from n alone, so the one square root on the path from the numbers to the direction does
+// not wait on another. The book's construction (n plus a uniform point of the unit sphere,
+// normalised) has the same density, with three long steps in a row: a root for the sphere point,
+// then the root and the division of the normalisation; a path took one per diffuse bounce.
+RTWEEKEND_FORCE_INLINE vec3f sample_cosine_direction(const vec3f& n, float u1, float u2) {
+    const float r = sqrt_f(u1), height = sqrt_f(fmax_inline(0.0f, 1.0f - u1));
+    const vec3f circle = unit_circle(u2);
+    vec3f e1, e2;
+    frame_across(n, e1, e2);
+    return (r * circle.x) * e1 + (r * circle.y) * e2 + height * n;
 }
 
 } // namespace rt

@@ -100,7 +100,7 @@ struct render_result {
 // (x[k], y[k]), with its own generator rng[k] (sample_rng); the function sets color[k] and adds
 // the rays it traced for it to rays[k] (which start at 0).
 struct sample_batch {
-    static constexpr int capacity = 16;
+    static constexpr int capacity = 32;
     int count = 0;
     int x[capacity], y[capacity], s[capacity];
     pcg32 rng[capacity];

@@ -2,6 +2,7 @@
 // surface_hit: what the compiled scene's closest-hit query reports about the surface a ray meets.
 
 #include "../hittable.h"
+#include "force_inline.h"
 #include "leaf_query.h"
 #include "ray_offset.h"
 #include "vec3f.h"
@@ -42,7 +43,7 @@ namespace detail {
 // Where a ray leaving the surface at `hit` in direction wi starts: pushed off the surface on the
 // side wi points to. A scattering point inside a volume (in_volume) lies on no surface, so it has
 // nothing to escape from and the ray starts at the point itself (see trace_path).
-inline ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax, bool in_volume = false) {
+RTWEEKEND_FORCE_INLINE ray3f spawn_ray(const surface_hit& hit, const vec3f& wi, float tmax, bool in_volume = false) {
     // The normal, negated when wi goes below it: its sign bits flipped by a mask, not a branch
     // (a glass sphere's rays go either way at random).
     const uint32_t flip = uint32_t(!(dot(wi, hit.normal) >= 0)) << 31;
