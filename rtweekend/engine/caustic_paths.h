@@ -63,6 +63,7 @@
 #include "camera_frame.h"
 #include "compiled_scene.h"
 #include "light_set.h"
+#include "in_place_array.h"
 #include "rng.h"
 #include "sampling.h"
 #include "surface_coordinates.h"
@@ -193,8 +194,9 @@ struct caustic_light_vertices {
         vec3f colour;                    // a textured material's colour at p
         int vertices;                    // the path's vertices between the light and p
     };
-    vertex at[capacity];
-    int count = 0;
+    // Built as the path reaches them: a camera path of a render without caustics holds an empty
+    // one, whose room (some 300 bytes) is never written and so never takes cache lines.
+    in_place_array<vertex, capacity> at;
     uint32_t light = 0; // the light the path started from
 };
 
@@ -202,7 +204,7 @@ class caustic_splats;
 
 // The light path of a camera sample in a render whose light tracing `splats` sets up: its numbers
 // from u, at the camera path's time, at most most_vertices vertices between the light and a kept
-// point.
+// point, appended to `out` (empty on entry).
 template <class Uniform>
 void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_splats& splats, int most_vertices,
                                   Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays);
@@ -468,7 +470,6 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
 template <class Uniform>
 void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_splats& splats, int most_vertices,
                                   Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays) {
-    out.count = 0;
     float pmf = 0;
     const uint32_t chosen = scene.lights.pick(u.next_float(), pmf);
     if (chosen == light_set::none) return;
@@ -492,7 +493,7 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_spl
         const vec3f wi = -r.dir; // back towards the light
         if (m.has_non_delta_lobe()) {
             if (since_delta == 0) return; // light no delta vertex has bent: not a caustic
-            caustic_light_vertices::vertex& x = out.at[out.count++];
+            caustic_light_vertices::vertex& x = out.at.emplace_back();
             x.p = hit.p;
             x.normal = hit.normal;
             x.shading_normal = hit.shading_normal;
@@ -502,7 +503,7 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_spl
             x.material = hit.material;
             x.colour = m.albedo;
             x.vertices = vertices;
-            if (m.kind != material_kind::lambertian || out.count == caustic_light_vertices::capacity) return;
+            if (m.kind != material_kind::lambertian || out.at.size() == caustic_light_vertices::capacity) return;
             since_delta = 0;
         } else {
             ++since_delta;

@@ -322,7 +322,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
 
     // Caustics past this vertex, by light tracing: joined to the points the sample's light path
     // reached past delta vertices.
-    if (caustics && light_path.count > 0 && has_density && caustic_vertex(hit, m)) join_light_path(vm, hit);
+    if (caustics && light_path.at.size() > 0 && has_density && caustic_vertex(hit, m)) join_light_path(vm, hit);
 
     material_sample s;
     dimension_uniforms material_u = material_uniforms(ps, depth);
@@ -400,7 +400,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
 // weighed against the path tracer's finding it (caustic_splats::deep_light_path_weight).
 template <path_estimator E, bool UserMaterials>
 void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit) {
-    for (int k = 0; k < light_path.count; ++k) {
+    for (int k = 0; k < light_path.at.size(); ++k) {
         const caustic_light_vertices::vertex& x = light_path.at[k];
         // The path tracer's path would be longer than max_depth rays.
         if (depth + x.vertices + 3 > max_depth) return;

@@ -13,7 +13,7 @@
 // axis. Three kinds:
 //
 //   independent  every number from the sample's own PCG stream (rng.h), in the order asked: the
-//                images rtweekend made before samplers existed, bit for bit
+//                numbers rtweekend drew before samplers existed
 //   stratified   jittered: the N samples of a pixel fall one per stratum of each dimension (N
 //                strata in 1-D, a k x k grid in 2-D with k = floor(sqrt(N)); the samples past k^2
 //                are uniform), the strata shuffled per pixel and dimension so that dimensions do
