@@ -181,6 +181,59 @@ TEST_CASE("sample_lanes: every lane's numbers are its pixel_sampler's, bit for b
             }
 }
 
+TEST_CASE("sample_lanes::prepare2d: each sampler then gives the pair it would have computed, and only for that dimension") {
+    // The path tracer draws a batch's bounce directions ahead this way; the images stay the same
+    // only if a held pair is exactly the computed one and other dimensions are untouched.
+    const uint32_t held = sample_dimension::bounce(2) + sample_dimension::direction;
+    const uint32_t others[] = {sample_dimension::bounce(1) + sample_dimension::direction,
+                               sample_dimension::bounce(3) + sample_dimension::direction, sample_dimension::camera_lens};
+    for (int spp : {1, 64}) {
+        const sampler_plan plan(sampler_kind::sobol, 3, spp);
+        const int count = sample_lanes::capacity;
+        std::vector<pcg32> streams, alone_streams;
+        for (int k = 0; k < count; ++k) {
+            streams.push_back(sample_rng(5, uint64_t(k), uint64_t(k % spp)));
+            alone_streams.push_back(streams.back());
+        }
+        std::vector<pixel_sampler> ahead, alone;
+        ahead.reserve(size_t(count));
+        alone.reserve(size_t(count));
+        for (int k = 0; k < count; ++k) {
+            ahead.emplace_back(plan, 3 * k, 2 * k + 1, k % spp, streams[size_t(k)]);
+            alone.emplace_back(plan, 3 * k, 2 * k + 1, k % spp, alone_streams[size_t(k)]);
+        }
+        pixel_sampler* pointers[sample_lanes::capacity];
+        for (int k = 0; k < count; ++k) pointers[k] = &ahead[size_t(k)];
+        sample_lanes lanes(pointers, count);
+        REQUIRE(lanes.vectorised()); // Sobol numbers of small pixels: the lanes' own loop
+        lanes.prepare2d(held);
+        for (int k = 0; k < count; ++k) {
+            const uniform2 expected = alone[size_t(k)].get2d(held);
+            for (int again = 0; again < 2; ++again) { // asked twice: the same pair both times
+                const uniform2 got = ahead[size_t(k)].get2d(held);
+                CHECK(got.u1 == expected.u1);
+                CHECK(got.u2 == expected.u2);
+            }
+            for (uint32_t d : others) {
+                const uniform2 a = ahead[size_t(k)].get2d(d), b = alone[size_t(k)].get2d(d);
+                CHECK(a.u1 == b.u1);
+                CHECK(a.u2 == b.u2);
+            }
+            // The sample's PCG stream is not touched by the numbers drawn ahead.
+            CHECK(streams[size_t(k)].next_u32() == alone_streams[size_t(k)].next_u32());
+        }
+    }
+    // Independent and stratified numbers are not drawn in lanes: the path tracer asks each
+    // sampler in turn, in the order its path draws them.
+    for (sampler_kind kind : {sampler_kind::independent, sampler_kind::stratified}) {
+        const sampler_plan plan(kind, 3, 16);
+        pcg32 rng = sample_rng(5, 0, 0);
+        pixel_sampler one(plan, 0, 0, 0, rng);
+        pixel_sampler* pointer = &one;
+        CHECK_FALSE(sample_lanes(&pointer, 1).vectorised());
+    }
+}
+
 TEST_CASE("Sobol: the first points of dimensions 0 and 1 from their definitions") {
     // Dimension 0: 1/2, 1/4, 3/4, 1/8, ... (van der Corput). Dimension 1, columns 1/2, 3/4, 5/8,
     // 15/16 (v_i = v_{i-1} xor v_{i-1}/2), index i the xor of the columns of its set bits:
