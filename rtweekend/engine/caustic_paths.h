@@ -195,7 +195,7 @@ struct caustic_light_vertices {
         int vertices;                    // the path's vertices between the light and p
     };
     // Built as the path reaches them: a camera path of a render without caustics holds an empty
-    // one, whose room (some 300 bytes) is never written and so never takes cache lines.
+    // one, whose room (252 bytes) is never written and so never takes cache lines.
     in_place_array<vertex, capacity> at;
     uint32_t light = 0; // the light the path started from
 };
