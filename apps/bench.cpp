@@ -220,7 +220,7 @@ void bench_scene(const bench_options& o) {
     const rt::bvh_stats& bs = compiled.bvh.stats;
     std::printf("scene %s: %zu spheres, %zu triangles, %zu quads, %zu lights; BVH built in %.2f ms (scene compiled in %.2f ms): "
                 "%zu nodes, %zu leaves, depth %d, %zu bytes of geometry and BVH\n",
-                o.scene.c_str(), compiled.spheres.count, compiled.triangles.count, compiled.quads.count,
+                o.scene.c_str(), compiled.spheres.count, compiled.triangles.distinct, compiled.quads.count,
                 compiled.lights.lights.size(), bs.build_ms, compile_s * 1e3, bs.nodes,
                 bs.leaves, bs.depth, compiled.geometry_bytes());
 
@@ -312,9 +312,9 @@ void print_mesh_summary(const std::string& name, const compiled_mesh& m) {
     std::printf("mesh %s: %zu triangles (%zu degenerate left out), loaded in %.0f ms; BVH built in %.0f ms: %zu nodes, "
                 "%zu leaves, depth %d; bytes_per_triangle %.1f (BVH %.1f + triangles %.1f)\n",
                 name.c_str(), m.triangles, m.scene.triangles.degenerate, m.load_ms, bs.build_ms, bs.nodes, bs.leaves,
-                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.triangles.count),
-                double(bs.bytes()) / double(m.scene.triangles.count),
-                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.triangles.count));
+                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.triangles.distinct),
+                double(bs.bytes()) / double(m.scene.triangles.distinct),
+                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.triangles.distinct));
 }
 
 compiled_mesh load_and_compile(const std::string& path) {
@@ -447,7 +447,7 @@ void bench_scaling(const bench_options& o) {
         auto mesh = std::make_shared<rt::triangle_mesh>(std::move(positions), sub.triangles,
                                                         std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5)));
         compiled_mesh m = compile_mesh(mesh);
-        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangles.count, o));
+        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangles.distinct, o));
     }
 
     std::printf("| primitives | scene | BVH build ms | bytes/primitive | ns/ray primary | ns/ray diffuse | ns/ray shadow |\n");

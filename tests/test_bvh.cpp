@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <vector>
 
 namespace test_bvh {
@@ -176,6 +178,85 @@ TEST_CASE("bvh: small and degenerate inputs") {
     checker cl(l, same, bvh_ref::max_leaf_size);
     cl.walk(l.root, nullptr, 0);
     CHECK(cl.problems == 0);
+}
+
+TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf box that holds it") {
+    // Small triangles and, one in twenty, long thin ones across the whole scene, which boxes by
+    // centroids cannot separate from the small ones: the builder splits the long ones by planes
+    // through them (spatial_min_count 16: down to small nodes).
+    pcg32 rng = sample_rng(21, 0, 0);
+    auto u = [&] { return rng.next_float(); };
+    std::vector<std::array<vec3f, 3>> corners;
+    std::vector<bvh_primitive> prims;
+    for (uint32_t i = 0; i < 2000; ++i) {
+        const vec3f c{100 * u(), 100 * u(), 100 * u()};
+        const float length = i % 20 == 0 ? 120.0f : 4.0f;
+        const vec3f long_edge{length * (u() - 0.5f), length * (u() - 0.5f), length * (u() - 0.5f)};
+        const vec3f short_edge{u() - 0.5f, u() - 0.5f, u() - 0.5f};
+        corners.push_back({c, c + long_edge, c + short_edge});
+        box3f b;
+        for (const vec3f& v : corners.back()) b.grow(v);
+        prims.push_back({b, shape_kind::triangle, i});
+    }
+    bvh_build_options options;
+    options.triangle_corners = [&](uint32_t i) { return corners[i]; };
+    options.spatial_min_count = 16;
+    bvh8 bvh = build_bvh8(prims, options);
+    const std::vector<uint32_t>& order = bvh.order[size_t(shape_kind::triangle)];
+    CHECK(order.size() > prims.size() + prims.size() / 20); // more than 5 % copies: splits happened
+    CHECK(order.size() < 2 * prims.size());                 // and within reason (budget 1.3, per split at most its node)
+
+    // Each triangle's leaf boxes (the slots that hold a leaf naming it), found by walking the tree.
+    std::vector<std::vector<box3f>> boxes(prims.size());
+    int problems = 0;
+    std::vector<uint32_t> pending{bvh.root};
+    REQUIRE_FALSE(bvh_ref::is_leaf(bvh.root));
+    while (!pending.empty()) {
+        const bvh_node8& node = bvh.nodes.at(pending.back());
+        pending.pop_back();
+        for (int i = 0; i < 8; ++i) {
+            const uint32_t child = node.child[i];
+            if (child == bvh_ref::empty) continue;
+            const box3f slot{{node.bounds[0][i], node.bounds[1][i], node.bounds[2][i]},
+                             {node.bounds[3][i], node.bounds[4][i], node.bounds[5][i]}};
+            if (!bvh_ref::is_leaf(child)) {
+                pending.push_back(child);
+                continue;
+            }
+            if (bvh_ref::kind(child) != shape_kind::triangle || bvh_ref::count(child) > options.max_leaf_size) ++problems;
+            std::vector<uint32_t> in_leaf;
+            for (uint32_t k = bvh_ref::first(child); k < bvh_ref::first(child) + bvh_ref::count(child); ++k) {
+                const uint32_t t = order.at(k);
+                boxes.at(t).push_back(slot);
+                in_leaf.push_back(t);
+            }
+            // A leaf names a triangle once: its parts went to different sides of each split.
+            std::sort(in_leaf.begin(), in_leaf.end());
+            if (std::adjacent_find(in_leaf.begin(), in_leaf.end()) != in_leaf.end()) ++problems;
+        }
+    }
+    CHECK(problems == 0);
+    // Points of each triangle, in double: corners, edge midpoints and random interior points. Each
+    // must lie in one of the triangle's leaf boxes, or a ray hitting it there would miss it.
+    int outside = 0;
+    for (size_t t = 0; t < prims.size(); ++t) {
+        REQUIRE_FALSE(boxes[t].empty()); // every triangle is in some leaf
+        const vec3 a = corners[t][0].to_double(), b = corners[t][1].to_double(), c = corners[t][2].to_double();
+        std::vector<vec3> points{a, b, c, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)};
+        for (int k = 0; k < 40; ++k) {
+            double s1 = u(), s2 = u();
+            if (s1 + s2 > 1) s1 = 1 - s1, s2 = 1 - s2;
+            points.push_back(a + s1 * (b - a) + s2 * (c - a));
+        }
+        for (const vec3& p : points) {
+            bool inside = false;
+            for (const box3f& box : boxes[t])
+                inside = inside || (box.lo.x <= p.x() && p.x() <= box.hi.x && box.lo.y <= p.y() && p.y() <= box.hi.y &&
+                                    box.lo.z <= p.z() && p.z() <= box.hi.z);
+            outside += !inside;
+        }
+    }
+    CHECK(outside == 0);
 }
 
 TEST_CASE("bvh: leaf references round-trip their fields") {

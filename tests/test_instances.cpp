@@ -158,9 +158,9 @@ TEST_CASE("instances: an instanced mesh is hit exactly where the same mesh trans
     const compiled_scene flat = compile_scene(by_hand, point3(0, 0, 0));
     CHECK(inst.instances.count() == 2);
     REQUIRE(inst.objects.size() == 1);
-    CHECK(inst.objects[0]->triangles.count == mesh->faces.size());
+    CHECK(inst.objects[0]->triangles.distinct == mesh->faces.size());
     CHECK(inst.triangles.count == 0);
-    CHECK(flat.triangles.count == 2 * mesh->faces.size());
+    CHECK(flat.triangles.distinct == 2 * mesh->faces.size());
 
     std::mt19937 gen(11);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -194,7 +194,7 @@ TEST_CASE("instances: a mesh placed 1000 times is stored once") {
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
     CHECK(scene.instances.count() == 1000);
     REQUIRE(scene.objects.size() == 1);
-    CHECK(scene.objects[0]->triangles.count == mesh->faces.size());
+    CHECK(scene.objects[0]->triangles.distinct == mesh->faces.size());
     CHECK(scene.triangles.count == 0);
     // Each placement is where its translation puts it: straight down -z onto the sphere of
     // instance (i, j) in the front layer, whose top point is at z = -5 + 1.
@@ -210,7 +210,7 @@ TEST_CASE("instances: a mesh placed 1000 times is stored once") {
     once.add(std::make_shared<translate>(mesh, vec3(0, 0, -5)));
     const compiled_scene single = compile_scene(once, point3(0, 0, 0));
     CHECK(single.instances.count() == 0);
-    CHECK(single.triangles.count == mesh->faces.size());
+    CHECK(single.triangles.distinct == mesh->faces.size());
 }
 
 TEST_CASE("instances: small subtrees are copied, spheres under a similarity stay spheres") {

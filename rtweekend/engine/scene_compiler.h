@@ -34,6 +34,7 @@
 #include "validate.h"
 #include "vec3f.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -214,10 +215,16 @@ class scene_compiler {
         for (size_t i = 0; i < instances_.size(); ++i)
             prims.push_back({instance_bounds(instances_[i]), shape_kind::instance, uint32_t(i)});
         for (const bvh_primitive& p : prims) out_.bounds.grow(p.bounds);
-        out_.bvh = build_bvh8(prims);
-        for (int k = 0; k < shape_kind_count; ++k)
-            if (out_.bvh.order[size_t(k)].size() == prims.size() && !prims.empty())
+        bvh_build_options options;
+        // Triangles may be split by planes through them (bvh.h): a mesh's boxes overlap less.
+        if (!triangles_.empty()) options.triangle_corners = [this](uint32_t i) { return triangles_[i].v; };
+        out_.bvh = build_bvh8(prims, options);
+        // One kind of shape only (counted in prims: order names a split triangle more than once).
+        for (int k = 0; k < shape_kind_count; ++k) {
+            auto of_kind = [k](const bvh_primitive& p) { return int(p.kind) == k; };
+            if (!prims.empty() && std::all_of(prims.begin(), prims.end(), of_kind))
                 out_.single_kind = static_cast<shape_kind>(k);
+        }
 
         // Leaf loads read floatv::width lanes from any leaf start: pad every array that far.
         const size_t pad = floatv::width;
@@ -228,6 +235,7 @@ class scene_compiler {
 
         const auto& triangle_order = out_.bvh.order[size_t(shape_kind::triangle)];
         out_.triangles.count = triangle_order.size();
+        out_.triangles.distinct = triangles_.size();
         for (uint32_t i : triangle_order) push_triangle(triangles_[i]);
         if (out_.triangles.count > 0)
             for (size_t k = 0; k < pad; ++k) push_triangle({{vec3f(), vec3f(), vec3f()}, 0});
@@ -565,10 +573,22 @@ class scene_compiler {
         auto emission = [&](uint32_t m) -> const compiled_material& { return out_.materials[m]; };
         auto record = [&](shape_kind kind, size_t count, const std::vector<uint32_t>& material, auto make) {
             std::vector<uint32_t>& table = lights.of_shape[size_t(kind)];
+            // A triangle the BVH split by a plane through it is laid out once for each leaf that
+            // holds a part of it (bvh.h, spatial splits): one light, which all its copies name.
+            const std::vector<uint32_t>& order = out_.bvh.order[size_t(kind)];
+            std::unordered_map<uint32_t, uint32_t> light_of_shape;
             for (size_t i = 0; i < count; ++i) {
                 const compiled_material& m = emission(material[i]);
                 if (!m.emits()) continue;
                 if (table.empty()) table.assign(count, light_set::none);
+                if (i < order.size()) {
+                    const auto light_index = uint32_t(lights.lights.size());
+                    const auto [known, is_new] = light_of_shape.try_emplace(order[i], light_index);
+                    if (!is_new) {
+                        table[i] = known->second;
+                        continue;
+                    }
+                }
                 light l = make(uint32_t(i));
                 l.emission = m.emission; // a textured light: its texture's mean (material_compiler.h)
                 l.two_sided = m.two_sided;

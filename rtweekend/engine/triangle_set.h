@@ -37,6 +37,9 @@ struct triangle_ray {
 
 struct triangle_set {
     size_t count = 0; // triangles; the arrays hold floatv::width more when count > 0 (padding)
+    // The scene's triangles: count less the copies of those the BVH split by a plane through
+    // them, which are laid out once for each leaf holding a part (bvh.h, spatial splits).
+    size_t distinct = 0;
     size_t degenerate = 0; // triangles of zero area the compiler left out (they can never be hit)
     // Coordinate `axis` of vertex v of triangle i is vertex[3 * v + axis][i].
     std::array<std::vector<float>, 9> vertex;
