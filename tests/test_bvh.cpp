@@ -259,6 +259,35 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
     CHECK(outside == 0);
 }
 
+TEST_CASE("bvh: spatial splits of triangles that all overlap stay within their budget") {
+    // 3000 copies of one large triangle and 3000 slivers across it: every plane through them cuts
+    // them all, which a split could repeat level after level. The budget (references per
+    // triangle) and the room for references bound the work; the tree stays valid.
+    std::vector<std::array<vec3f, 3>> corners;
+    std::vector<bvh_primitive> prims;
+    pcg32 rng = sample_rng(4, 0, 0);
+    for (uint32_t i = 0; i < 6000; ++i) {
+        const float y = i < 3000 ? 0.0f : 100.0f * rng.next_float();
+        corners.push_back(i < 3000 ? std::array<vec3f, 3>{vec3f{0, 0, 0}, vec3f{100, 0, 1}, vec3f{0, 100, 2}}
+                                   : std::array<vec3f, 3>{vec3f{0, y, 0}, vec3f{100, y, 0.5f}, vec3f{50, y + 0.01f, 3}});
+        box3f b;
+        for (const vec3f& v : corners.back()) b.grow(v);
+        prims.push_back({b, shape_kind::triangle, i});
+    }
+    bvh_build_options options;
+    options.triangle_corners = [&](uint32_t i) { return corners[i]; };
+    options.spatial_min_count = 16;
+    bvh8 bvh = build_bvh8(prims, options);
+    const size_t references = bvh.order[size_t(shape_kind::triangle)].size();
+    CHECK(references >= prims.size());
+    // The budget is checked before each split, which may add at most its node's references.
+    CHECK(double(references) <= double(options.spatial_budget) * double(prims.size()) + double(prims.size()));
+    std::vector<int> seen(prims.size(), 0);
+    for (uint32_t t : bvh.order[size_t(shape_kind::triangle)]) ++seen.at(t);
+    CHECK(std::count(seen.begin(), seen.end(), 0) == 0);
+    CHECK(bvh.stats.depth < 96 / 3); // the 8-wide tree of a binary tree under 96 levels
+}
+
 TEST_CASE("bvh: leaf references round-trip their fields") {
     uint32_t ref = bvh_ref::make_leaf(shape_kind::triangle, 12345678, 16);
     CHECK(bvh_ref::is_leaf(ref));
