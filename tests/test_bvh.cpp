@@ -26,6 +26,20 @@ box3f random_box(pcg32& rng, float spread, float size) {
     return b;
 }
 
+// The BVH over triangles given by their corners, with spatial splits down to nodes of more than
+// 16 triangles; `options` is what it was built with.
+bvh8 build_with_spatial_splits(const std::vector<std::array<vec3f, 3>>& corners, bvh_build_options& options) {
+    std::vector<bvh_primitive> prims;
+    for (uint32_t i = 0; i < corners.size(); ++i) {
+        box3f b;
+        for (const vec3f& v : corners[i]) b.grow(v);
+        prims.push_back({b, shape_kind::triangle, i});
+    }
+    options.triangle_corners = [&corners](uint32_t i) { return corners[i]; };
+    options.spatial_min_count = 16;
+    return build_bvh8(prims, options);
+}
+
 bool contains(const bvh_node8& node, int slot, const box3f& b) {
     return node.bounds[0][slot] <= b.lo.x && node.bounds[1][slot] <= b.lo.y && node.bounds[2][slot] <= b.lo.z &&
            node.bounds[3][slot] >= b.hi.x && node.bounds[4][slot] >= b.hi.y && node.bounds[5][slot] >= b.hi.z;
@@ -187,27 +201,21 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
     pcg32 rng = sample_rng(21, 0, 0);
     auto u = [&] { return rng.next_float(); };
     std::vector<std::array<vec3f, 3>> corners;
-    std::vector<bvh_primitive> prims;
     for (uint32_t i = 0; i < 2000; ++i) {
         const vec3f c{100 * u(), 100 * u(), 100 * u()};
         const float length = i % 20 == 0 ? 120.0f : 4.0f;
         const vec3f long_edge{length * (u() - 0.5f), length * (u() - 0.5f), length * (u() - 0.5f)};
         const vec3f short_edge{u() - 0.5f, u() - 0.5f, u() - 0.5f};
         corners.push_back({c, c + long_edge, c + short_edge});
-        box3f b;
-        for (const vec3f& v : corners.back()) b.grow(v);
-        prims.push_back({b, shape_kind::triangle, i});
     }
     bvh_build_options options;
-    options.triangle_corners = [&](uint32_t i) { return corners[i]; };
-    options.spatial_min_count = 16;
-    bvh8 bvh = build_bvh8(prims, options);
+    bvh8 bvh = build_with_spatial_splits(corners, options);
     const std::vector<uint32_t>& order = bvh.order[size_t(shape_kind::triangle)];
-    CHECK(order.size() > prims.size() + prims.size() / 20); // more than 5 % copies: splits happened
-    CHECK(order.size() < 2 * prims.size());                 // and within reason (budget 1.3, per split at most its node)
+    CHECK(order.size() > corners.size() + corners.size() / 20); // more than 5 % copies: splits happened
+    CHECK(order.size() < 2 * corners.size()); // and within reason (budget 1.3, per split at most its node)
 
     // Each triangle's leaf boxes (the slots that hold a leaf naming it), found by walking the tree.
-    std::vector<std::vector<box3f>> boxes(prims.size());
+    std::vector<std::vector<box3f>> boxes(corners.size());
     int problems = 0;
     std::vector<uint32_t> pending{bvh.root};
     REQUIRE_FALSE(bvh_ref::is_leaf(bvh.root));
@@ -239,7 +247,7 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
     // Points of each triangle, in double: corners, edge midpoints and random interior points. Each
     // must lie in one of the triangle's leaf boxes, or a ray hitting it there would miss it.
     int outside = 0;
-    for (size_t t = 0; t < prims.size(); ++t) {
+    for (size_t t = 0; t < corners.size(); ++t) {
         REQUIRE_FALSE(boxes[t].empty()); // every triangle is in some leaf
         const vec3 a = corners[t][0].to_double(), b = corners[t][1].to_double(), c = corners[t][2].to_double();
         std::vector<vec3> points{a, b, c, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)};
@@ -264,25 +272,19 @@ TEST_CASE("bvh: spatial splits of triangles that all overlap stay within their b
     // them all, which a split could repeat level after level. The budget (references per
     // triangle) and the room for references bound the work; the tree stays valid.
     std::vector<std::array<vec3f, 3>> corners;
-    std::vector<bvh_primitive> prims;
     pcg32 rng = sample_rng(4, 0, 0);
     for (uint32_t i = 0; i < 6000; ++i) {
         const float y = i < 3000 ? 0.0f : 100.0f * rng.next_float();
         corners.push_back(i < 3000 ? std::array<vec3f, 3>{vec3f{0, 0, 0}, vec3f{100, 0, 1}, vec3f{0, 100, 2}}
                                    : std::array<vec3f, 3>{vec3f{0, y, 0}, vec3f{100, y, 0.5f}, vec3f{50, y + 0.01f, 3}});
-        box3f b;
-        for (const vec3f& v : corners.back()) b.grow(v);
-        prims.push_back({b, shape_kind::triangle, i});
     }
     bvh_build_options options;
-    options.triangle_corners = [&](uint32_t i) { return corners[i]; };
-    options.spatial_min_count = 16;
-    bvh8 bvh = build_bvh8(prims, options);
-    const size_t references = bvh.order[size_t(shape_kind::triangle)].size();
-    CHECK(references >= prims.size());
+    bvh8 bvh = build_with_spatial_splits(corners, options);
+    const size_t n = corners.size(), references = bvh.order[size_t(shape_kind::triangle)].size();
+    CHECK(references >= n);
     // The budget is checked before each split, which may add at most its node's references.
-    CHECK(double(references) <= double(options.spatial_budget) * double(prims.size()) + double(prims.size()));
-    std::vector<int> seen(prims.size(), 0);
+    CHECK(double(references) <= double(options.spatial_budget) * double(n) + double(n));
+    std::vector<int> seen(n, 0);
     for (uint32_t t : bvh.order[size_t(shape_kind::triangle)]) ++seen.at(t);
     CHECK(std::count(seen.begin(), seen.end(), 0) == 0);
     CHECK(bvh.stats.depth < 96 / 3); // the 8-wide tree of a binary tree under 96 levels
