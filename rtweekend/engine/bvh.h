@@ -58,6 +58,11 @@ struct box3f {
         lo = {fmin_inline(lo.x, b.lo.x), fmin_inline(lo.y, b.lo.y), fmin_inline(lo.z, b.lo.z)};
         hi = {fmax_inline(hi.x, b.hi.x), fmax_inline(hi.y, b.hi.y), fmax_inline(hi.z, b.hi.z)};
     }
+    // Shrinks to the part inside b (empty when they do not overlap).
+    void clip(const box3f& b) {
+        lo = {fmax_inline(lo.x, b.lo.x), fmax_inline(lo.y, b.lo.y), fmax_inline(lo.z, b.lo.z)};
+        hi = {fmin_inline(hi.x, b.hi.x), fmin_inline(hi.y, b.hi.y), fmin_inline(hi.z, b.hi.z)};
+    }
     bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
     vec3f centre() const { return 0.5f * (lo + hi); }
     // Half the surface area: the SAH only needs areas up to a common factor.
@@ -192,7 +197,9 @@ class bvh_builder {
         options_.max_leaf_size = std::clamp<uint32_t>(options_.max_leaf_size, 1, bvh_ref::max_leaf_size);
         options_.bins = std::clamp(options_.bins, 2, max_bins);
         for (size_t i = 0; i < prims.size(); ++i) refs_[i] = {prims[i].bounds, prims[i].bounds.centre(), prims[i].kind, prims[i].index};
-        if (options_.triangle_corners) {
+        // Spatial splits: only where a node of more than spatial_min_count triangles can exist.
+        spatial_ = options_.triangle_corners && prims.size() > options_.spatial_min_count;
+        if (spatial_) {
             box3f all;
             for (const bvh_primitive& p : prims) all.grow(p.bounds);
             min_overlap_ = options_.spatial_overlap * all.half_area();
@@ -295,7 +302,7 @@ class bvh_builder {
                     best_cost = cost;
                     best_axis = axis;
                     best_bin = b;
-                    if (options_.triangle_corners) {
+                    if (spatial_) {
                         best_left = left;
                         best_right = box3f();
                         for (int k = b + 1; k < bins; ++k) best_right.grow(bin_bounds[k]);
@@ -311,7 +318,7 @@ class bvh_builder {
         spatial_split spatial;
         // The references made (copies of split triangles) and the room refs_ takes (a split
         // appends its right side) both stay bounded: the work and memory of a build are O(n).
-        const bool may_split_spatially = options_.triangle_corners && count > options_.spatial_min_count && !mixed &&
+        const bool may_split_spatially = spatial_ && count > options_.spatial_min_count && !mixed &&
                                          refs_[first].kind == shape_kind::triangle && depth < forced_median_depth &&
                                          references_ < reference_budget_ && refs_.size() + count <= room_;
         if (may_split_spatially && parent_area > 0 &&
@@ -389,11 +396,9 @@ class bvh_builder {
         float cost = std::numeric_limits<float>::infinity(); // SAH, areas times counts
     };
 
-    static float overlap_area(const box3f& a, const box3f& b) {
-        box3f both;
-        both.lo = {fmax_inline(a.lo.x, b.lo.x), fmax_inline(a.lo.y, b.lo.y), fmax_inline(a.lo.z, b.lo.z)};
-        both.hi = {fmin_inline(a.hi.x, b.hi.x), fmin_inline(a.hi.y, b.hi.y), fmin_inline(a.hi.z, b.hi.z)};
-        return both.half_area();
+    static float overlap_area(box3f a, const box3f& b) {
+        a.clip(b);
+        return a.half_area();
     }
 
     // The boxes of the parts of triangle v on either side of the plane x[axis] = plane, within
@@ -424,12 +429,8 @@ class bvh_builder {
         // Within the reference's box, and each on its side of the plane (the crossings were
         // widened past it).
         auto component = [axis](vec3f& p) -> float& { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); };
-        for (box3f* part : {&left, &right}) {
-            part->lo = {fmax_inline(part->lo.x, within.lo.x), fmax_inline(part->lo.y, within.lo.y),
-                        fmax_inline(part->lo.z, within.lo.z)};
-            part->hi = {fmin_inline(part->hi.x, within.hi.x), fmin_inline(part->hi.y, within.hi.y),
-                        fmin_inline(part->hi.z, within.hi.z)};
-        }
+        left.clip(within);
+        right.clip(within);
         component(left.hi) = fmin_inline(component(left.hi), plane);
         component(right.lo) = fmax_inline(component(right.lo), plane);
     }
@@ -590,8 +591,10 @@ class bvh_builder {
     bvh_build_options options_;
     std::vector<ref> refs_;
     std::vector<binary_node> binary_;
-    // Spatial splits: the overlap below which a split by centroids is good enough, and the
-    // references made so far (a triangle split in two counts twice) against their budget.
+    // Spatial splits: whether they are tried, the triangles' corners, the overlap below which a
+    // split by centroids is good enough, and the references made so far (a triangle split in two
+    // counts twice) against their budget.
+    bool spatial_ = false;
     std::vector<std::array<vec3f, 3>> corners_;
     float min_overlap_ = 0;
     size_t references_ = 0, reference_budget_ = 0, room_ = 0;

@@ -581,13 +581,11 @@ class scene_compiler {
                 const compiled_material& m = emission(material[i]);
                 if (!m.emits()) continue;
                 if (table.empty()) table.assign(count, light_set::none);
-                if (i < order.size()) {
-                    const auto light_index = uint32_t(lights.lights.size());
-                    const auto [known, is_new] = light_of_shape.try_emplace(order[i], light_index);
-                    if (!is_new) {
-                        table[i] = known->second;
-                        continue;
-                    }
+                const auto light_index = uint32_t(lights.lights.size());
+                const auto [known, is_new] = light_of_shape.try_emplace(order[i], light_index);
+                if (!is_new) {
+                    table[i] = known->second;
+                    continue;
                 }
                 light l = make(uint32_t(i));
                 l.emission = m.emission; // a textured light: its texture's mean (material_compiler.h)
