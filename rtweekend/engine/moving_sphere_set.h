@@ -55,9 +55,7 @@ struct moving_sphere_set {
         const vec3f c = center(i, ray.time);
         const vec3f outward = normalize(ray.at(t) - c);
         hit.p = c + r[i] * outward;
-        hit.front_face = dot(ray.dir, outward) < 0;
-        hit.normal = hit.front_face ? outward : -outward;
-        hit.shading_normal = hit.normal;
+        hit.set_face_normal(ray.dir, outward);
         hit.offset = offset[i];
         hit.material = material[i];
     }

@@ -109,9 +109,7 @@ inline void quad_set::complete_hit(const ray3f& ray, float t, uint32_t i, surfac
     const float a = dot(get(dual_u_field, i), rel), b = dot(get(dual_v_field, i), rel);
     hit.p = q + a * edge_u(i) + b * edge_v(i);
     const vec3f outward = normalize(get(normal_field, i));
-    hit.front_face = dot(ray.dir, outward) < 0;
-    hit.normal = hit.front_face ? outward : -outward;
-    hit.shading_normal = hit.normal;
+    hit.set_face_normal(ray.dir, outward);
     hit.offset = 0; // the reconstructed point is within an ulp or so of the plane: the ray offset suffices
     hit.material = material[i];
 }

@@ -12,6 +12,10 @@
 
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace rt {
 
 namespace detail {
@@ -36,11 +40,40 @@ RTWEEKEND_FORCE_INLINE float offset_component(float p, float n) {
 }
 } // namespace detail
 
+#if defined(__SSE2__)
+namespace detail {
+// offset_component's steps on the three axes at once, in SSE lanes (x, y, z, unused): a third of
+// the instructions, and no wait for one axis's result before the next. The same bits.
+RTWEEKEND_FORCE_INLINE __m128 offset_lanes(__m128 p, __m128 n) {
+#if defined(__FMA__)
+    const __m128 by_distance = _mm_fmadd_ps(_mm_set1_ps(1.0f / 65536.0f), n, p);
+#else
+    const __m128 by_distance = _mm_add_ps(p, _mm_mul_ps(_mm_set1_ps(1.0f / 65536.0f), n));
+#endif
+    const __m128i of_i = _mm_cvttps_epi32(_mm_mul_ps(_mm_set1_ps(256.0f), n));
+    const __m128i negative = _mm_castps_si128(_mm_cmplt_ps(p, _mm_setzero_ps()));
+    const __m128i by_ulps = _mm_add_epi32(_mm_castps_si128(p), _mm_sub_epi32(_mm_xor_si128(of_i, negative), negative));
+    const __m128 near_origin = _mm_cmplt_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), p), _mm_set1_ps(1.0f / 32.0f));
+    return _mm_or_ps(_mm_and_ps(near_origin, by_distance), _mm_andnot_ps(near_origin, _mm_castsi128_ps(by_ulps)));
+}
+inline __m128 lanes_of(const vec3f& v) { return _mm_setr_ps(v.x, v.y, v.z, 0.0f); }
+inline vec3f vec3f_of(__m128 v) {
+    alignas(16) float f[4];
+    _mm_store_ps(f, v);
+    return {f[0], f[1], f[2]};
+}
+} // namespace detail
+#endif
+
 // The point p moved off the surface along the unit normal n (n points to the side the new ray
 // leaves into).
 RTWEEKEND_FORCE_INLINE vec3f offset_ray_origin(const vec3f& p, const vec3f& n) {
+#if defined(__SSE2__)
+    return detail::vec3f_of(detail::offset_lanes(detail::lanes_of(p), detail::lanes_of(n)));
+#else
     return {detail::offset_component(p.x, n.x), detail::offset_component(p.y, n.y),
             detail::offset_component(p.z, n.z)};
+#endif
 }
 
 } // namespace rt

@@ -55,9 +55,7 @@ struct sphere_set {
         // Re-project the hit point onto the sphere: removes the error of o + t d along the ray.
         vec3f outward = normalize(ray.at(t) - center);
         hit.p = center + r[i] * outward;
-        hit.front_face = dot(ray.dir, outward) < 0;
-        hit.normal = hit.front_face ? outward : -outward;
-        hit.shading_normal = hit.normal;
+        hit.set_face_normal(ray.dir, outward);
         hit.offset = offset[i];
         hit.material = material[i];
     }

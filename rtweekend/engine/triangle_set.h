@@ -167,9 +167,7 @@ inline void triangle_set::complete_hit(const ray3f& ray, float t, uint32_t i, su
     vec3 p = det != 0 ? (u * a + v * b + w * c) / det : ray.at(t).to_double();
     vec3f outward = vec3f(unit_vector(cross(b - a, c - a)));
     hit.p = vec3f(p);
-    hit.front_face = dot(ray.dir, outward) < 0;
-    hit.normal = hit.front_face ? outward : -outward;
-    hit.shading_normal = hit.normal;
+    hit.set_face_normal(ray.dir, outward);
     if (!normal[0].empty() && det != 0) {
         // Smooth shading: the vertex normals weighted by the barycentric coordinates.
         auto vertex_normal = [&](int k) {
