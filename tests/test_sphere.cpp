@@ -458,4 +458,26 @@ TEST_CASE("compiled_scene::intersect agrees with sphere::hit on random rays") {
     CHECK(compared > 200);
 }
 
+TEST_CASE("surface_hit::set_face_normal: the book's rule, the normal negated by its sign bits") {
+    // front_face = d . outward < 0; the normal (and the shading normal) faces the ray: outward on
+    // the front face, -outward (every sign bit flipped, zeros too) otherwise, a grazing ray (d .
+    // outward = 0) included, as the book's set_face_normal has it.
+    auto same_bits = [](const vec3f& a, const vec3f& b) {
+        return float_bits(a.x) == float_bits(b.x) && float_bits(a.y) == float_bits(b.y) && float_bits(a.z) == float_bits(b.z);
+    };
+    const vec3f outward{0.0f, 0.6f, -0.8f};
+    surface_hit h;
+    h.set_face_normal({0.0f, -1.0f, 0.0f}, outward); // against it: d . n = -0.6
+    CHECK(h.front_face);
+    CHECK(same_bits(h.normal, outward));
+    CHECK(same_bits(h.shading_normal, outward));
+    h.set_face_normal({0.0f, 0.0f, -1.0f}, outward); // along it: d . n = 0.8
+    CHECK_FALSE(h.front_face);
+    CHECK(same_bits(h.normal, {-0.0f, -0.6f, 0.8f}));
+    CHECK(same_bits(h.shading_normal, h.normal));
+    h.set_face_normal({1.0f, 0.0f, 0.0f}, outward); // grazing: d . n = 0
+    CHECK_FALSE(h.front_face);
+    CHECK(same_bits(h.normal, {-0.0f, -0.6f, 0.8f}));
+}
+
 } // namespace test_sphere
