@@ -33,6 +33,10 @@
 
 #include "image.h"
 
+#if defined(__AVX512DQ__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -69,6 +73,31 @@ inline int64_t to_fixed(float v, int64_t limit, bool& clamped) {
         n = n > 0 ? limit : -limit;
     }
     return n;
+}
+
+// A sample's three channels converted by to_fixed and added to sum[0], sum[1], sum[2]: the same
+// integers. Where the machine converts doubles to 64-bit integers in SIMD lanes (AVX-512DQ with
+// VL), the three channels go through to_fixed's steps side by side when every one is below
+// min(2^52, limit - 1) units in size, where no clamp applies and rounding is floor(x + 0.5);
+// any other sample (out of range, NaN) channel by channel, as to_fixed has it.
+inline void add_fixed3(float r, float g, float b, int64_t limit, int64_t* sum, bool& clamped) {
+#if defined(__AVX512DQ__) && defined(__AVX512VL__)
+    const __m256d x = _mm256_mul_pd(_mm256_cvtps_pd(_mm_setr_ps(r, g, b, 0.0f)), _mm256_set1_pd(0x1p32));
+    const __m256d size = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+    const double fast_bound = std::fmin(0x1p52, double(limit) - 1.0); // exact: limit - 1 < 2^53 where it is the smaller
+    if (_mm256_cmp_pd_mask(size, _mm256_set1_pd(fast_bound), _CMP_LT_OQ) == 0xF) {
+        const __m256i n = _mm256_cvttpd_epi64(_mm256_floor_pd(_mm256_add_pd(x, _mm256_set1_pd(0.5))));
+        alignas(32) int64_t lanes[4];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), n);
+        sum[0] += lanes[0];
+        sum[1] += lanes[1];
+        sum[2] += lanes[2];
+        return;
+    }
+#endif
+    sum[0] += to_fixed(r, limit, clamped);
+    sum[1] += to_fixed(g, limit, clamped);
+    sum[2] += to_fixed(b, limit, clamped);
 }
 
 // The mean of n samples whose fixed-point sum is `sum`, as a float (0 for no samples): the

@@ -547,9 +547,7 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
                 const vec3f& c = b.color[k];
                 bool clamped = false;
                 // No overflow: at most spp samples of at most `limit` each (fixed_point.h).
-                sums.rgb[i] += to_fixed(c.x, limit, clamped);
-                sums.rgb[i + 1] += to_fixed(c.y, limit, clamped);
-                sums.rgb[i + 2] += to_fixed(c.z, limit, clamped);
+                add_fixed3(c.x, c.y, c.z, limit, &sums.rgb[i], clamped);
                 if (clamped) ++mine.saturated;
             });
             bool stopped = false;
