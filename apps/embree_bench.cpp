@@ -2,7 +2,7 @@
 // reference to compare this project's own tracer with. Benchmark only: built when the CMake
 // option RTWEEKEND_EMBREE is ON; nothing else in the project depends on Embree.
 //
-//   embree_bench --mesh FILE.obj --rays FILE.rays [--rays MORE.rays ...] [--runs N]
+//   embree_bench --mesh FILE.obj --rays FILE.rays [--rays MORE.rays ...] [--runs N] [--side-by-side]
 //   embree_bench --mesh FILE.obj --make-rays PREFIX [--size N]
 //
 // Tracing: one Embree device with one thread ("threads=1"), one triangle geometry, scene built
@@ -14,6 +14,17 @@
 // The mesh, the build time and, per file, the median speed by thread CPU time as well (steadier
 // when other processes share the cores) go to stderr, so stdout holds only the per-file lines.
 //
+// --side-by-side also compiles the mesh for this project's tracer (the same triangles) and times
+// the two in turns, a whole ray file each (tens of milliseconds), the one going first alternating
+// from run to run, so that both run through the same stretches of whatever else the machine is
+// doing: on a shared machine whose load comes in bursts, two processes timed one after the other
+// can differ by 20 % from one minute to the next, and the ratio of this mode is far steadier.
+// (Turns of 16384 rays measured the cost of sharing the caches with Embree too: 1-2 % more for
+// this project's tracer, whose data Embree's turns evicted; BENCHMARKS.md section 18.) Both must
+// find the same number of hits. Per ray file, one line on stdout, each speed and the ratio the
+// median over runs:
+//   rays N hits H ours_mrays_per_s X embree_mrays_per_s Y ours_over_embree R
+//
 // --make-rays writes PREFIX.primary.rays, PREFIX.diffuse.rays and PREFIX.shadow.rays: the
 // standard mesh workload (apps/ray_workload.h) at N x N pixels (default 1024), with Embree as
 // the closest-hit tracer and the bounding box of the triangles' corners.
@@ -22,6 +33,9 @@
 #include "ray_workload.h"
 
 #include <rtweekend/io/ray_file.h>
+#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/material.h>
+#include <rtweekend/mesh.h>
 #include <rtweekend/scene_error.h>
 
 #include <embree3/rtcore.h>
@@ -47,12 +61,13 @@ const char* const program = "embree_bench";
 
 void print_usage(std::FILE* to) {
     std::fprintf(to,
-                 "usage: embree_bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--runs N]\n"
+                 "usage: embree_bench --mesh FILE.obj --rays FILE.rays [--rays FILE.rays ...] [--runs N] [--side-by-side]\n"
                  "       embree_bench --mesh FILE.obj --make-rays PREFIX [--size N]\n"
                  "Times Embree (one thread, one ray at a time) on ray files, or writes the standard mesh workload.\n"
                  "  --mesh FILE       the OBJ mesh\n"
                  "  --rays FILE       a .rays file to trace; one line on stdout per file\n"
                  "  --runs N          timed runs per file, the median is reported (default 5)\n"
+                 "  --side-by-side    also time this project's tracer on the same rays, the two in turns\n"
                  "  --make-rays P     write P.primary.rays, P.diffuse.rays, P.shadow.rays\n"
                  "  --size N          image size of the workload, N x N primary rays (default 1024)\n"
                  "  --help            show this help\n");
@@ -79,6 +94,7 @@ struct arguments {
     std::vector<std::string> rays;
     int runs = 5;
     int size = 1024;
+    bool side_by_side = false;
 };
 
 arguments parse(int argc, char** argv) {
@@ -107,6 +123,9 @@ arguments parse(int argc, char** argv) {
         } else if (arg == "--runs") {
             a.runs = parse_int(arg, next(), 1, 1000);
             runs_given = true;
+        } else if (arg == "--side-by-side") {
+            if (inline_value) usage_error("--side-by-side takes no value");
+            a.side_by_side = true;
         } else if (arg == "--make-rays") {
             a.make_rays = next();
         } else if (arg == "--size") {
@@ -122,6 +141,7 @@ arguments parse(int argc, char** argv) {
     if (a.rays.empty() == a.make_rays.empty()) usage_error("give either --rays FILE or --make-rays PREFIX");
     if (!a.make_rays.empty() && runs_given) usage_error("--runs goes with --rays, not --make-rays");
     if (!a.rays.empty() && size_given) usage_error("--size goes with --make-rays, not --rays");
+    if (a.side_by_side && a.rays.empty()) usage_error("--side-by-side goes with --rays");
     return a;
 }
 
@@ -259,15 +279,31 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-run_result trace_once(const embree_scene& scene, const rt::ray_batch& batch) {
+// The closest hit's distance, by either tracer (`hit`: room for this project's hit record, kept
+// from ray to ray as bench keeps it).
+bool closest_t(const embree_scene& scene, const rt::ray3f& ray, float& t, rt::surface_hit&) {
+    rt::vec3f n;
+    return scene.intersect(ray, t, n);
+}
+
+bool closest_t(const rt::compiled_scene& scene, const rt::ray3f& ray, float& t, rt::surface_hit& hit) {
+    if (!scene.intersect(ray, hit)) return false;
+    t = hit.t;
+    return true;
+}
+
+// Every ray of the batch through `scene`, Embree's or this project's (both have occluded(ray);
+// intersect differs, see closest_t).
+template <class Scene>
+run_result trace_once(const Scene& scene, const rt::ray_batch& batch) {
     run_result r;
     const double cpu_start = thread_cpu_seconds();
     auto start = std::chrono::steady_clock::now();
     if (batch.kind == rt::ray_query::closest) {
+        rt::surface_hit hit;
         for (const rt::ray3f& ray : batch.rays) {
             float t;
-            rt::vec3f n;
-            if (scene.intersect(ray, t, n)) {
+            if (closest_t(scene, ray, t, hit)) {
                 ++r.hits;
                 r.sum_t += t;
             }
@@ -303,6 +339,53 @@ void bench(const embree_scene& scene, const std::string& path, const rt::ray_bat
     std::fflush(stdout);
 }
 
+// This project's tracer on the mesh: the same triangles as Embree's, compiled as `bench` compiles
+// a mesh (one world of it, about the origin: ray files are in the mesh's coordinates).
+struct our_mesh {
+    rt::hittable_list world;
+    rt::compiled_scene scene;
+    explicit our_mesh(const app::tri_mesh& mesh) {
+        std::vector<rt::point3> positions(mesh.positions.begin(), mesh.positions.end());
+        world.add(std::make_shared<rt::triangle_mesh>(std::move(positions), mesh.triangles,
+                                                      std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
+        scene = rt::compile_scene(world, rt::point3(0, 0, 0));
+    }
+};
+
+void side_by_side(const embree_scene& embree, const our_mesh& ours, const std::string& path, const rt::ray_batch& batch,
+                  int runs) {
+    const size_t n = batch.rays.size();
+    std::vector<double> ratios, our_speeds, embree_speeds;
+    run_result first_ours;
+    for (int run = 0; run < runs; ++run) {
+        run_result o, e;
+        if (run % 2 == 0) {
+            o = trace_once(ours.scene, batch);
+            e = trace_once(embree, batch);
+        } else {
+            e = trace_once(embree, batch);
+            o = trace_once(ours.scene, batch);
+        }
+        if (run == 0) {
+            first_ours = o;
+            if (o.hits != e.hits)
+                throw rt::scene_error("'" + path + "': this project's tracer found " + std::to_string(o.hits) +
+                                      " hits, Embree " + std::to_string(e.hits) + ": the speeds would not compare like for like");
+        }
+        const double mo = o.seconds > 0 ? double(n) / o.seconds * 1e-6 : 0.0;
+        const double me = e.seconds > 0 ? double(n) / e.seconds * 1e-6 : 0.0;
+        our_speeds.push_back(mo);
+        embree_speeds.push_back(me);
+        ratios.push_back(me > 0 ? mo / me : 0.0);
+        std::fprintf(stderr, "%s: %s: run %d: ours %.3f, Embree %.3f Mrays/s, ratio %.3f\n", program, path.c_str(),
+                     run + 1, mo, me, ratios.back());
+    }
+    std::printf("rays %zu hits %llu ours_mrays_per_s %.3f embree_mrays_per_s %.3f ours_over_embree %.3f\n", n,
+                static_cast<unsigned long long>(first_ours.hits), median(our_speeds), median(embree_speeds),
+                median(ratios));
+    std::fflush(stdout);
+}
+
 void make_rays(const embree_scene& scene, const app::tri_mesh& mesh, const std::string& prefix, int size) {
     rt::vec3f lo, hi;
     triangle_bounds(mesh, lo, hi);
@@ -332,7 +415,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s: %s: %zu triangles, build %.1f ms (RTC_BUILD_QUALITY_HIGH, 1 thread)\n", program,
                      a.mesh.c_str(), mesh.triangles.size(), scene.build_seconds() * 1e3);
         if (!a.make_rays.empty()) make_rays(scene, mesh, a.make_rays, a.size);
-        for (size_t i = 0; i < a.rays.size(); ++i) bench(scene, a.rays[i], batches[i], a.runs);
+        if (a.side_by_side) {
+            auto start = std::chrono::steady_clock::now();
+            const our_mesh ours(mesh);
+            std::fprintf(stderr, "%s: this project's BVH built in %.1f ms (1 thread)\n", program,
+                         seconds_since(start) * 1e3);
+            for (size_t i = 0; i < a.rays.size(); ++i) side_by_side(scene, ours, a.rays[i], batches[i], a.runs);
+        } else {
+            for (size_t i = 0; i < a.rays.size(); ++i) bench(scene, a.rays[i], batches[i], a.runs);
+        }
         return 0;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "%s: error: out of memory\n", program);
