@@ -7,9 +7,10 @@
 // The build is a binary tree split by the surface area heuristic (SAH) with binned centroids
 // (Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies", IEEE RT 2007), and for
 // triangles, when the caller gives their corners, also by planes through them (spatial splits,
-// Stich et al. 2009: see bvh_build_options), which is then collapsed into 8-wide nodes: every
-// node holds the boxes of up to eight children side by side, so one 8-lane SIMD instruction tests
-// a ray against all of them (Dammertz, Hanika and
+// Stich et al. 2009: see bvh_build_options), which is then collapsed into 8-wide nodes at least
+// SAH cost (Ylitie, Karras and Laine 2017: see plan_collapse): every node holds the boxes of up to
+// eight children side by side, so one 8-lane SIMD instruction tests a ray against all of them
+// (Dammertz, Hanika and
 // Keller, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays",
 // EGSR 2008; the layout Embree uses). Traversal visits the nearest child first and skips every
 // child that starts beyond the closest hit found so far; an any-hit (shadow) query stops at the
@@ -224,6 +225,7 @@ class bvh_builder {
         out.stats.primitives = refs_.size();
         if (refs_.empty()) return out;
         uint32_t root = build(0, uint32_t(refs_.size()), 0);
+        plan_collapse();
         out.root = emit(root, out, 0);
         out.stats.nodes = out.nodes.size();
         return out;
@@ -533,6 +535,73 @@ class bvh_builder {
         return std::clamp(b, 0, bins - 1);
     }
 
+    // Which binary nodes become the 8-wide tree's nodes: the collapse of least SAH cost, by
+    // dynamic programming over the binary tree (Ylitie, Karras and Laine, "Efficient Incoherent
+    // Ray Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, section 3.1, with the leaves
+    // kept as the binary build made them). cost(b, i) is the least cost of binary node b's
+    // subtree given at most i slots of its 8-wide parent: a leaf costs its primitives; an inner
+    // node in one slot is an 8-wide node of its own (its area times node_cost, plus its two
+    // children sharing 8 slots); given more slots it may instead hand them to its children. The
+    // greedy rule before (open the largest inner child until there are eight) is one such
+    // collapse, so this one costs at most as much.
+    float& cost(uint32_t b, int slots) { return cost_[size_t(b) * 8 + size_t(slots - 1)]; }
+
+    // The slots (1 .. slots - 1) for inner node b's left child, the rest for its right, that
+    // cost least; cost_of_split gets that cost.
+    int best_split(uint32_t b, int slots, float* cost_of_split = nullptr) {
+        const binary_node& n = binary_[b];
+        int best = 1;
+        float best_cost = std::numeric_limits<float>::infinity();
+        for (int k = 1; k < slots; ++k) {
+            const float c = cost(n.left, k) + cost(n.right, slots - k);
+            if (c < best_cost) {
+                best_cost = c;
+                best = k;
+            }
+        }
+        if (cost_of_split) *cost_of_split = best_cost;
+        return best;
+    }
+
+    void plan_collapse() {
+        cost_.assign(binary_.size() * 8, 0.0f);
+        // Children precede their parents in binary_ (make_inner comes after both are built).
+        for (uint32_t b = 0; b < binary_.size(); ++b) {
+            const binary_node& n = binary_[b];
+            if (n.leaf) {
+                const float c = n.bounds.half_area() * options_.primitive_cost * float(n.count);
+                for (int i = 1; i <= 8; ++i) cost(b, i) = c;
+                continue;
+            }
+            float split8 = 0;
+            best_split(b, 8, &split8);
+            cost(b, 1) = n.bounds.half_area() * options_.node_cost + split8;
+            for (int i = 2; i <= 8; ++i) {
+                float split = 0;
+                best_split(b, i, &split);
+                cost(b, i) = std::min(cost(b, i - 1), split);
+            }
+        }
+    }
+
+    // Appends the subtrees that binary node b's share of `slots` slots holds, as plan_collapse
+    // costed them: b itself (a leaf, or an inner node that gets an 8-wide node), or its
+    // children's subtrees.
+    void collect(uint32_t b, int slots, uint32_t* children, int& n) {
+        if (binary_[b].leaf || slots == 1) {
+            children[n++] = b;
+            return;
+        }
+        float split = 0;
+        const int k = best_split(b, slots, &split);
+        if (!(split < cost(b, slots - 1))) {
+            collect(b, slots - 1, children, n);
+            return;
+        }
+        collect(binary_[b].left, k, children, n);
+        collect(binary_[b].right, slots - k, children, n);
+    }
+
     // Writes the 8-wide subtree for binary node b and returns the reference to it.
     uint32_t emit(uint32_t b, bvh8& out, int depth) {
         const binary_node& node = binary_[b];
@@ -547,24 +616,12 @@ class bvh_builder {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) order.push_back(refs_[i].index);
             return bvh_ref::make_leaf(kind, first, node.count);
         }
-        // Gather up to eight children: open the largest inner child until there are eight.
-        uint32_t children[8] = {node.left, node.right};
-        int n = 2;
-        while (n < 8) {
-            int widest = -1;
-            float widest_area = -1;
-            for (int i = 0; i < n; ++i) {
-                const binary_node& c = binary_[children[i]];
-                if (!c.leaf && c.bounds.half_area() > widest_area) {
-                    widest_area = c.bounds.half_area();
-                    widest = i;
-                }
-            }
-            if (widest < 0) break;
-            uint32_t opened = children[widest];
-            children[widest] = binary_[opened].left;
-            children[n++] = binary_[opened].right;
-        }
+        // Its children: the binary subtrees plan_collapse chose for its eight slots.
+        uint32_t children[8];
+        int n = 0;
+        const int k = best_split(b, 8);
+        collect(node.left, k, children, n);
+        collect(node.right, 8 - k, children, n);
         if (out.nodes.size() >= bvh_ref::max_nodes) throw scene_error("too many BVH nodes (at most 2^29)");
         auto index = uint32_t(out.nodes.size());
         out.nodes.emplace_back();
@@ -591,6 +648,7 @@ class bvh_builder {
     bvh_build_options options_;
     std::vector<ref> refs_;
     std::vector<binary_node> binary_;
+    std::vector<float> cost_; // plan_collapse's cost(b, slots), 8 per binary node
     // Spatial splits: whether they are tried, the triangles' corners, the overlap below which a
     // split by centroids is good enough, and the references made so far (a triangle split in two
     // counts twice) against their budget.
