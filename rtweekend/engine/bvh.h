@@ -829,7 +829,13 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
             found = true;
             if (AnyHit) return true;
         }
-        // Next: the nearest pending child that still starts before the closest hit.
+        // Next: the nearest pending child that still starts before the closest hit (an any-hit
+        // walk's tmax never shrinks: every pending child still qualifies).
+        if (AnyHit) {
+            if (top == 0) return found;
+            ref = stack[--top].ref;
+            continue;
+        }
         for (;;) {
             if (top == 0) return found;
             const entry& e = stack[--top];
