@@ -443,10 +443,7 @@ void bench_scaling(const bench_options& o) {
     app::tri_mesh base = app::read_obj(mesh_path);
     for (int level = 0; level <= o.levels; ++level) {
         app::tri_mesh sub = app::loop_subdivide(base, level);
-        std::vector<rt::point3> positions(sub.positions.begin(), sub.positions.end());
-        auto mesh = std::make_shared<rt::triangle_mesh>(std::move(positions), sub.triangles,
-                                                        std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5)));
-        compiled_mesh m = compile_mesh(mesh);
+        compiled_mesh m = compile_mesh(app::to_triangle_mesh(sub, std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
         rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangles.distinct, o));
     }
 

@@ -345,9 +345,7 @@ struct our_mesh {
     rt::hittable_list world;
     rt::compiled_scene scene;
     explicit our_mesh(const app::tri_mesh& mesh) {
-        std::vector<rt::point3> positions(mesh.positions.begin(), mesh.positions.end());
-        world.add(std::make_shared<rt::triangle_mesh>(std::move(positions), mesh.triangles,
-                                                      std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
+        world.add(app::to_triangle_mesh(mesh, std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
         scene = rt::compile_scene(world, rt::point3(0, 0, 0));
     }
 };

@@ -5,6 +5,7 @@
 //   loop_beta(n)                   the weight of each neighbour of an interior vertex of valence n
 //   count_edges(mesh)              distinct undirected edges (checks the mesh like loop_subdivide)
 //   read_obj(path)                 positions and triangles of an OBJ file (rt::load_obj)
+//   to_triangle_mesh(mesh, m)      the renderer's triangle_mesh of it, every face of material m
 //   encode_obj(mesh) / write_obj(path, mesh)   "v" and "f" lines; write_obj is atomic
 //
 // The rules (C. Loop, "Smooth Subdivision Surfaces Based on Triangles", M.S. thesis, University
@@ -230,6 +231,12 @@ inline tri_mesh loop_subdivide(const tri_mesh& mesh, int levels) {
 inline tri_mesh read_obj(const std::string& path) {
     std::shared_ptr<rt::triangle_mesh> mesh = rt::load_obj(path, nullptr);
     return {std::move(mesh->positions), std::move(mesh->faces)};
+}
+
+// The other way: the mesh as a shape the renderer takes, every face of `material`.
+inline std::shared_ptr<rt::triangle_mesh> to_triangle_mesh(const tri_mesh& m, std::shared_ptr<rt::material> material) {
+    std::vector<rt::point3> positions(m.positions.begin(), m.positions.end());
+    return std::make_shared<rt::triangle_mesh>(std::move(positions), m.triangles, std::move(material));
 }
 
 // "v x y z" lines (each coordinate rounded to float, written in the shortest form that reads back

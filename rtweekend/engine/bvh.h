@@ -541,9 +541,9 @@ class bvh_builder {
     // kept as the binary build made them). cost(b, i) is the least cost of binary node b's
     // subtree given at most i slots of its 8-wide parent: a leaf costs its primitives; an inner
     // node in one slot is an 8-wide node of its own (its area times node_cost, plus its two
-    // children sharing 8 slots); given more slots it may instead hand them to its children. The
-    // greedy rule before (open the largest inner child until there are eight) is one such
-    // collapse, so this one costs at most as much.
+    // children sharing 8 slots); given more slots it may instead hand them to its children.
+    // Opening the largest inner child until there are eight is one such collapse, so this one
+    // costs at most as much.
     float& cost(uint32_t b, int slots) { return cost_[size_t(b) * 8 + size_t(slots - 1)]; }
 
     // The slots (1 .. slots - 1) for inner node b's left child, the rest for its right, that
@@ -573,14 +573,10 @@ class bvh_builder {
                 for (int i = 1; i <= 8; ++i) cost(b, i) = c;
                 continue;
             }
-            float split8 = 0;
-            best_split(b, 8, &split8);
-            cost(b, 1) = n.bounds.half_area() * options_.node_cost + split8;
-            for (int i = 2; i <= 8; ++i) {
-                float split = 0;
-                best_split(b, i, &split);
-                cost(b, i) = std::min(cost(b, i - 1), split);
-            }
+            float split[9]; // split[i]: the best sharing of i slots between the two children
+            for (int i = 2; i <= 8; ++i) best_split(b, i, &split[i]);
+            cost(b, 1) = n.bounds.half_area() * options_.node_cost + split[8];
+            for (int i = 2; i <= 8; ++i) cost(b, i) = std::min(cost(b, i - 1), split[i]);
         }
     }
 
