@@ -2,6 +2,8 @@
 //
 //   compare render.pfm reference.pfm     linear and 8-bit metrics (.exr works as .pfm does)
 //   compare render.png reference.pfm     8-bit metrics (the PFM is encoded as our writers do)
+//   compare render.pfm reference.pfm --cells 30    and where the error lies: each 30x30 cell's
+//                                        percentage of the summed squared error
 //
 // stdout starts with one machine-readable line per comparison,
 //   linear rmse X relmse Y psnr Z bias R G B nonfinite NA NREF
@@ -25,9 +27,13 @@ const app::description d{"compare", "Compares IMAGE with the reference image REF
 
 void print_usage(std::FILE* to) {
     std::fprintf(to,
-                 "usage: compare IMAGE REFERENCE [--help]\n"
+                 "usage: compare IMAGE REFERENCE [--cells N] [--help]\n"
                  "%s\n"
                  "  IMAGE, REFERENCE  PPM (P3 or P6), PFM, EXR, PNG or BMP files of the same size\n"
+                 "  --cells N         also print where the error lies: the image cut into N x N pixel\n"
+                 "                    cells from the top left, each cell's percentage of the summed\n"
+                 "                    squared error (linear if both files are, else 8-bit codes),\n"
+                 "                    one line per row of cells, top row first\n"
                  "  --help            show this help\n"
                  "Two linear files (PFM or EXR) give linear metrics and 8-bit metrics (both encoded as the\n"
                  "writers do, gamma 2); if either file is 8-bit, the linear one is encoded and the metrics\n"
@@ -43,14 +49,27 @@ void print_usage(std::FILE* to) {
     std::exit(2);
 }
 
-std::vector<std::string> parse(int argc, char** argv) {
+struct arguments {
     std::vector<std::string> files;
+    int cells = 0; // 0: no error map
+};
+
+arguments parse(int argc, char** argv) {
+    arguments args;
+    std::vector<std::string>& files = args.files;
     bool options_ended = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
         if (!options_ended && (arg == "--help" || arg == "-h")) {
             print_usage(stdout);
             std::exit(0);
+        } else if (!options_ended && arg == "--cells") {
+            if (i + 1 >= argc) usage_error("--cells needs a value");
+            try {
+                args.cells = int(app::detail::integer_value("--cells", argv[++i], 1, 65536));
+            } catch (const app::parse_stop& stop) {
+                usage_error(stop.message);
+            }
         } else if (!options_ended && arg == "--") {
             options_ended = true;
         } else if (!options_ended && arg.size() > 1 && arg[0] == '-') {
@@ -61,7 +80,7 @@ std::vector<std::string> parse(int argc, char** argv) {
     }
     if (files.size() != 2)
         usage_error(std::string("expected ") + d.operands + " (two file names), got " + std::to_string(files.size()));
-    return files;
+    return args;
 }
 
 std::string size_text(const rt::image& img) { return std::to_string(img.width()) + "x" + std::to_string(img.height()); }
@@ -92,7 +111,8 @@ void print_nonfinite_note(const rt::image_error& e, bool linear) {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::string> files = parse(argc, argv);
+    const arguments args = parse(argc, argv);
+    const std::vector<std::string>& files = args.files;
     return app::run(d, [&] {
         rt::loaded_image a = rt::read_image(files[0]);
         rt::loaded_image ref = rt::read_image(files[1]);
@@ -115,6 +135,19 @@ int main(int argc, char** argv) {
         std::printf("  (PSNR peak: 1 linear, 255 8-bit; 8-bit compares %s)\n", how);
         if (c.linear) print_nonfinite_note(*c.linear, true);
         print_nonfinite_note(c.display, false);
+        if (args.cells > 0) {
+            // The pair the metrics compared: linear if both are, else 8-bit codes.
+            const bool linear = c.linear.has_value();
+            const rt::image a_px = linear || a.display_encoded ? a.pixels : rt::to_8bit_codes(a.pixels);
+            const rt::image ref_px = linear || ref.display_encoded ? ref.pixels : rt::to_8bit_codes(ref.pixels);
+            const rt::error_map map = rt::error_shares(a_px, ref_px, args.cells);
+            std::printf("\nsquared error by %dx%d-pixel cell (%s), percent of the total, top row first:\n", map.cell,
+                        map.cell, linear ? "linear" : "8-bit codes");
+            for (int row = 0; row < map.rows; ++row) {
+                for (int col = 0; col < map.columns; ++col) std::printf(col ? " %6.2f" : "%6.2f", 100 * map.at(col, row));
+                std::printf("\n");
+            }
+        }
 
         std::fflush(stdout);
         if (std::ferror(stdout)) throw rt::scene_error("cannot write the results to standard output");

@@ -212,4 +212,53 @@ TEST_CASE("metrics: images of different sizes or empty images throw, naming the 
     check_throws_with([&] { compare_linear(image(), image()); }, {"empty", "0x0"});
 }
 
+TEST_CASE("metrics: error_shares cuts the squared error into cells, by hand") {
+    // 3x2 pixels in cells of 2: two columns of cells (x 0-1 and x 2), one row (y 0-1).
+    const image ref = make_image(3, 2, {0, 0, 0, 0, 0, 0, 0, 0, 0, //
+                                        0, 0, 0, 0, 0, 0, 0, 0, 0});
+    const image a = make_image(3, 2, {1, 0, 0, 0, 0, 0, 0, 0, 0,   // (0, 0): R off by 1, squared 1
+                                      0, 0, 0, 0, 0, 2, 0, -3, 0}); // (1, 1): B by 2 (4); (2, 1): G by -3 (9)
+    const error_map m = error_shares(a, ref, 2);
+    CHECK(m.cell == 2);
+    CHECK(m.columns == 2);
+    CHECK(m.rows == 1);
+    REQUIRE(m.share.size() == 2);
+    CHECK(m.at(0, 0) == near(5.0 / 14.0));
+    CHECK(m.at(1, 0) == near(9.0 / 14.0));
+
+    // Cells of one pixel: each pixel's own share, rows top to bottom.
+    const error_map p = error_shares(a, ref, 1);
+    CHECK(p.columns == 3);
+    CHECK(p.rows == 2);
+    CHECK(p.at(0, 0) == near(1.0 / 14.0));
+    CHECK(p.at(1, 1) == near(4.0 / 14.0));
+    CHECK(p.at(2, 1) == near(9.0 / 14.0));
+    CHECK(p.at(1, 0) == 0.0);
+
+    // One cell larger than the image holds everything.
+    const error_map whole = error_shares(a, ref, 100);
+    CHECK(whole.columns == 1);
+    CHECK(whole.rows == 1);
+    CHECK(whole.at(0, 0) == near(1.0));
+}
+
+TEST_CASE("metrics: error_shares leaves NaN and Inf out, is all zero for equal images, and checks its input") {
+    const image ref = make_image(2, 1, {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f});
+    // The only differing values are not finite: nothing is left to share.
+    const image bad = make_image(2, 1, {nan_f, 0.5f, 0.5f, 0.5f, inf_f, 0.5f});
+    for (const image* a : {&ref, &bad}) {
+        const error_map m = error_shares(*a, ref, 1);
+        CHECK(m.at(0, 0) == 0.0);
+        CHECK(m.at(1, 0) == 0.0);
+    }
+    // A NaN beside a real difference: the difference takes all.
+    const image mixed = make_image(2, 1, {nan_f, 0.5f, 0.5f, 0.5f, 0.25f, 0.5f});
+    const error_map m = error_shares(mixed, ref, 1);
+    CHECK(m.at(0, 0) == 0.0);
+    CHECK(m.at(1, 0) == near(1.0));
+
+    check_throws_with([&] { error_shares(ref, ref, 0); }, {"cells", "0"});
+    check_throws_with([&] { error_shares(image(3, 2), image(2, 3), 4); }, {"3x2", "2x3"});
+}
+
 } // namespace test_metrics

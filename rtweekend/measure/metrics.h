@@ -8,6 +8,8 @@
 //                             read_image returns for PPM, PNG and BMP); PSNR peak 255
 //   compare_loaded(a, ref)    two images as read_image returns them, by the rule below
 //   to_8bit_codes(linear)     the codes our writers would store, as an image of floats 0..255
+//   error_shares(a, ref, n)   where the error lies: each n x n cell's share of the summed
+//                             squared error (an image's error is often a few bright features)
 //
 // Every metric is a mean over all pixels and the three channels; `ref` is the reference:
 //   rmse      sqrt(mean((a - ref)^2)), in the images' own units (radiance, or 8-bit codes)
@@ -59,11 +61,24 @@ struct image_comparison {
 // The epsilon in rel_mse's denominator.
 constexpr double rel_mse_epsilon = 1e-2;
 
+// The image cut into cells of `cell` x `cell` pixels from the top left (those on the right and
+// bottom edges smaller when cell does not divide the size), and each cell's part of the summed
+// squared error, (a - ref)^2 over its pixels and channels, as a fraction of the whole image's:
+// the shares sum to 1, or are all 0 when the images do not differ. Channel values that are NaN
+// or infinite in either image are left out, as compare_linear leaves them out.
+struct error_map {
+    int cell = 0, columns = 0, rows = 0;
+    std::vector<double> share; // rows top to bottom, columns left to right
+    double at(int column, int row) const { return share[size_t(row) * size_t(columns) + size_t(column)]; }
+};
+
 image_error compare_linear(const image& a, const image& ref);
 image_error compare_8bit(const image& a, const image& ref);
 image_error compare_codes(const image& a, const image& ref);
 image_comparison compare_loaded(const loaded_image& a, const loaded_image& ref);
 image to_8bit_codes(const image& linear);
+// Throws scene_error for images compare_linear refuses, and for cell < 1.
+error_map error_shares(const image& a, const image& ref, int cell);
 
 } // namespace rt
 
@@ -138,6 +153,33 @@ inline image_error compare_8bit(const image& a, const image& ref) {
     e.nonfinite_a = detail::count_nonfinite(a);
     e.nonfinite_ref = detail::count_nonfinite(ref);
     return e;
+}
+
+inline error_map error_shares(const image& a, const image& ref, int cell) {
+    detail::require_comparable(a, ref);
+    if (cell < 1) throw scene_error("error cells must be at least 1 pixel wide, got " + std::to_string(cell));
+    error_map map;
+    map.cell = cell;
+    map.columns = (a.width() - 1) / cell + 1;
+    map.rows = (a.height() - 1) / cell + 1;
+    map.share.assign(size_t(map.columns) * size_t(map.rows), 0.0);
+    double total = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const size_t i = (size_t(y) * size_t(a.width()) + size_t(x)) * 3;
+            double squared = 0;
+            for (int c = 0; c < 3; ++c) {
+                const float av = a.data()[i + c], rv = ref.data()[i + c];
+                if (!std::isfinite(av) || !std::isfinite(rv)) continue;
+                const double d = double(av) - double(rv);
+                squared += d * d;
+            }
+            map.share[size_t(y / cell) * size_t(map.columns) + size_t(x / cell)] += squared;
+            total += squared;
+        }
+    if (total > 0)
+        for (double& v : map.share) v /= total;
+    return map;
 }
 
 inline image_comparison compare_loaded(const loaded_image& a, const loaded_image& ref) {
