@@ -43,6 +43,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -98,7 +99,9 @@ struct render_result {
 
 // Samples handed to a batched sample function: sample k < count is sample s[k] of pixel
 // (x[k], y[k]), with its own generator rng[k] (sample_rng); the function sets color[k] and adds
-// the rays it traced for it to rays[k] (which start at 0).
+// the rays it traced for it to rays[k] (which start at 0). `workspace` is the function's own:
+// empty at first, and kept from one batch to the next of the same worker and job (a tile's pass),
+// for buffers it would otherwise build for every batch.
 struct sample_batch {
     static constexpr int capacity = 32;
     int count = 0;
@@ -106,6 +109,7 @@ struct sample_batch {
     pcg32 rng[capacity];
     vec3f color[capacity];
     uint64_t rays[capacity];
+    std::shared_ptr<void> workspace;
 };
 
 // Runs sample(x, y, s, rng, rays) -> vec3f for every sample of every pixel of a width x height
