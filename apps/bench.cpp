@@ -31,6 +31,7 @@
 //       each one's convergence slope (MSE against spp) and MSE at equal spp and equal time
 
 #include "app_options.h"
+#include "compiled_mesh.h"
 #include "loop_subdivision.h"
 #include "ray_workload.h"
 #include "user_sphere.h"
@@ -292,20 +293,8 @@ traced trace_batch(const rt::compiled_scene& scene, const rt::ray_batch& batch, 
 
 // The mesh as the only object of a world, compiled about the world origin (ray files are in
 // the mesh's own coordinates).
-struct compiled_mesh {
-    rt::hittable_list world;
-    rt::compiled_scene scene;
-    size_t triangles = 0;
-    double load_ms = 0;
-};
-
-compiled_mesh compile_mesh(std::shared_ptr<rt::triangle_mesh> mesh) {
-    compiled_mesh m;
-    m.triangles = mesh->triangle_count();
-    m.world.add(std::move(mesh));
-    m.scene = rt::compile_scene(m.world, rt::point3(0, 0, 0));
-    return m;
-}
+using app::compiled_mesh;
+using app::compile_mesh;
 
 void print_mesh_summary(const std::string& name, const compiled_mesh& m) {
     const rt::bvh_stats& bs = m.scene.bvh.stats;

@@ -136,13 +136,9 @@ int main(int argc, char** argv) {
         if (c.linear) print_nonfinite_note(*c.linear, true);
         print_nonfinite_note(c.display, false);
         if (args.cells > 0) {
-            // The pair the metrics compared: linear if both are, else 8-bit codes.
-            const bool linear = c.linear.has_value();
-            const rt::image a_px = linear || a.display_encoded ? a.pixels : rt::to_8bit_codes(a.pixels);
-            const rt::image ref_px = linear || ref.display_encoded ? ref.pixels : rt::to_8bit_codes(ref.pixels);
-            const rt::error_map map = rt::error_shares(a_px, ref_px, args.cells);
+            const rt::error_map map = rt::error_shares(a, ref, args.cells);
             std::printf("\nsquared error by %dx%d-pixel cell (%s), percent of the total, top row first:\n", map.cell,
-                        map.cell, linear ? "linear" : "8-bit codes");
+                        map.cell, map.linear ? "linear" : "8-bit codes");
             for (int row = 0; row < map.rows; ++row) {
                 for (int col = 0; col < map.columns; ++col) std::printf(col ? " %6.2f" : "%6.2f", 100 * map.at(col, row));
                 std::printf("\n");

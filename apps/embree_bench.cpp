@@ -29,13 +29,12 @@
 // standard mesh workload (apps/ray_workload.h) at N x N pixels (default 1024), with Embree as
 // the closest-hit tracer and the bounding box of the triangles' corners.
 
+#include "compiled_mesh.h"
 #include "loop_subdivision.h"
 #include "ray_workload.h"
 
 #include <rtweekend/io/ray_file.h>
-#include <rtweekend/engine/scene_compiler.h>
 #include <rtweekend/material.h>
-#include <rtweekend/mesh.h>
 #include <rtweekend/scene_error.h>
 
 #include <embree3/rtcore.h>
@@ -339,18 +338,9 @@ void bench(const embree_scene& scene, const std::string& path, const rt::ray_bat
     std::fflush(stdout);
 }
 
-// This project's tracer on the mesh: the same triangles as Embree's, compiled as `bench` compiles
-// a mesh (one world of it, about the origin: ray files are in the mesh's coordinates).
-struct our_mesh {
-    rt::hittable_list world;
-    rt::compiled_scene scene;
-    explicit our_mesh(const app::tri_mesh& mesh) {
-        world.add(app::to_triangle_mesh(mesh, std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
-        scene = rt::compile_scene(world, rt::point3(0, 0, 0));
-    }
-};
-
-void side_by_side(const embree_scene& embree, const our_mesh& ours, const std::string& path, const rt::ray_batch& batch,
+// This project's tracer on the mesh (app::compiled_mesh, the same triangles as Embree's) and
+// Embree, in turns.
+void side_by_side(const embree_scene& embree, const app::compiled_mesh& ours, const std::string& path, const rt::ray_batch& batch,
                   int runs) {
     const size_t n = batch.rays.size();
     std::vector<double> ratios, our_speeds, embree_speeds;
@@ -415,7 +405,8 @@ int main(int argc, char** argv) {
         if (!a.make_rays.empty()) make_rays(scene, mesh, a.make_rays, a.size);
         if (a.side_by_side) {
             auto start = std::chrono::steady_clock::now();
-            const our_mesh ours(mesh);
+            const app::compiled_mesh ours =
+                app::compile_mesh(app::to_triangle_mesh(mesh, std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
             std::fprintf(stderr, "%s: this project's BVH built in %.1f ms (1 thread)\n", program,
                          seconds_since(start) * 1e3);
             for (size_t i = 0; i < a.rays.size(); ++i) side_by_side(scene, ours, a.rays[i], batches[i], a.runs);

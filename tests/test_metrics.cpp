@@ -258,6 +258,26 @@ TEST_CASE("metrics: error_shares leaves NaN and Inf out, is all zero for equal i
     CHECK(m.at(1, 0) == near(1.0));
 
     check_throws_with([&] { error_shares(ref, ref, 0); }, {"cells", "0"});
+    check_throws_with([&] { error_shares(loaded(image(3, 2), true), loaded(image(2, 3), false), 4); }, {"3x2", "2x3"});
+}
+
+TEST_CASE("metrics: error_shares of loaded images compares what compare_loaded compares") {
+    // Two linear images: their linear values (squared errors 1 and 3^2 -> 0.1 and 0.9).
+    const image lin_ref = make_image(2, 1, {0, 0, 0, 0, 0, 0});
+    const image lin_a = make_image(2, 1, {1, 0, 0, 0, 3, 0});
+    const error_map lin = error_shares(loaded(lin_a, false), loaded(lin_ref, false), 1);
+    CHECK(lin.linear);
+    CHECK(lin.at(0, 0) == near(0.1));
+    CHECK(lin.at(1, 0) == near(0.9));
+    // An 8-bit image against a linear one: codes. The linear reference 0.25 encodes to
+    // int(256 * sqrt(0.25)) = 128 in every channel; the 8-bit image is 128 on the left and 138
+    // (10 codes off in each channel) on the right, so the right pixel holds all the error.
+    const image codes = make_image(2, 1, {128, 128, 128, 138, 138, 138});
+    const image quarter = make_image(2, 1, {0.25f, 0.25f, 0.25f, 0.25f, 0.25f, 0.25f});
+    const error_map mixed = error_shares(loaded(codes, true), loaded(quarter, false), 1);
+    CHECK_FALSE(mixed.linear);
+    CHECK(mixed.at(0, 0) == 0.0);
+    CHECK(mixed.at(1, 0) == near(1.0));
     check_throws_with([&] { error_shares(image(3, 2), image(2, 3), 4); }, {"3x2", "2x3"});
 }
 

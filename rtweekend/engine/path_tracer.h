@@ -435,7 +435,7 @@ void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMa
 
 // A batch's rays and hits, kept in sample_batch::workspace from batch to batch: built for each
 // batch, the 32 hits (each with room for a user shape's hit_record) and 64 rays were 8 KB written
-// with their defaults every 32 samples, 1.5 % of the cover's render time.
+// with their defaults every 32 samples, about 1.4 % of the cover's render time.
 struct batch_buffers {
     ray3f camera_rays[sample_batch::capacity];
     ray3f next[sample_batch::capacity];

@@ -9,7 +9,8 @@
 //   compare_loaded(a, ref)    two images as read_image returns them, by the rule below
 //   to_8bit_codes(linear)     the codes our writers would store, as an image of floats 0..255
 //   error_shares(a, ref, n)   where the error lies: each n x n cell's share of the summed
-//                             squared error (an image's error is often a few bright features)
+//                             squared error (an image's error is often a few bright features);
+//                             of two loaded images, in the values compare_loaded compares
 //
 // Every metric is a mean over all pixels and the three channels; `ref` is the reference:
 //   rmse      sqrt(mean((a - ref)^2)), in the images' own units (radiance, or 8-bit codes)
@@ -68,6 +69,7 @@ constexpr double rel_mse_epsilon = 1e-2;
 // or infinite in either image are left out, as compare_linear leaves them out.
 struct error_map {
     int cell = 0, columns = 0, rows = 0;
+    bool linear = true; // false: 8-bit codes (error_shares of loaded images, one of them 8-bit)
     std::vector<double> share; // rows top to bottom, columns left to right
     double at(int column, int row) const { return share[size_t(row) * size_t(columns) + size_t(column)]; }
 };
@@ -79,6 +81,9 @@ image_comparison compare_loaded(const loaded_image& a, const loaded_image& ref);
 image to_8bit_codes(const image& linear);
 // Throws scene_error for images compare_linear refuses, and for cell < 1.
 error_map error_shares(const image& a, const image& ref, int cell);
+// The same for two images as read_image returns them: linear values if both are linear, else
+// 8-bit codes, the linear one encoded (compare_loaded's rule).
+error_map error_shares(const loaded_image& a, const loaded_image& ref, int cell);
 
 } // namespace rt
 
@@ -90,6 +95,9 @@ namespace detail {
 inline std::string image_size_text(const image& img) {
     return std::to_string(img.width()) + "x" + std::to_string(img.height());
 }
+
+// An image as 8-bit codes: as it is if it holds codes already, else encoded as the writers do.
+inline image as_codes(const loaded_image& img) { return img.display_encoded ? img.pixels : to_8bit_codes(img.pixels); }
 
 inline void require_comparable(const image& a, const image& ref) {
     if (a.width() != ref.width() || a.height() != ref.height())
@@ -182,6 +190,14 @@ inline error_map error_shares(const image& a, const image& ref, int cell) {
     return map;
 }
 
+inline error_map error_shares(const loaded_image& a, const loaded_image& ref, int cell) {
+    if (!a.display_encoded && !ref.display_encoded) return error_shares(a.pixels, ref.pixels, cell);
+    detail::require_comparable(a.pixels, ref.pixels);
+    error_map map = error_shares(detail::as_codes(a), detail::as_codes(ref), cell);
+    map.linear = false;
+    return map;
+}
+
 inline image_comparison compare_loaded(const loaded_image& a, const loaded_image& ref) {
     detail::require_comparable(a.pixels, ref.pixels);
     image_comparison result;
@@ -191,9 +207,7 @@ inline image_comparison compare_loaded(const loaded_image& a, const loaded_image
         return result;
     }
     // At least one is 8-bit: encode whichever is linear, and compare codes.
-    image a_codes = a.display_encoded ? a.pixels : to_8bit_codes(a.pixels);
-    image ref_codes = ref.display_encoded ? ref.pixels : to_8bit_codes(ref.pixels);
-    result.display = compare_codes(a_codes, ref_codes);
+    result.display = compare_codes(detail::as_codes(a), detail::as_codes(ref));
     if (!a.display_encoded) result.display.nonfinite_a = detail::count_nonfinite(a.pixels);
     if (!ref.display_encoded) result.display.nonfinite_ref = detail::count_nonfinite(ref.pixels);
     return result;
