@@ -3,7 +3,10 @@
 #   cmake -DMODE=install|subdir -DSOURCE_DIR=<checkout> -DBUILD_DIR=<its build dir>
 #         -DCONSUMER_DIR=<consumer sources> -DWORK_DIR=<scratch dir, wiped first>
 #         -DGENERATOR=... [-DGENERATOR_PLATFORM=...] [-DGENERATOR_TOOLSET=...] [-DMAKE_PROGRAM=...]
-#         -DCXX_COMPILER=... [-DBUILD_TYPE=...] [-DCONFIG=...] -P consumer_test.cmake
+#         -DCXX_COMPILER=... [-DBUILD_TYPE=...] [-DCONFIG=...] [-DINSTALL_CONFIG=...] -P consumer_test.cmake
+#
+# BUILD_TYPE and CONFIG are the consumer's configuration; INSTALL_CONFIG the checkout build's, for
+# `cmake --install` (multi-configuration generators).
 #
 # MODE=install: `cmake --install BUILD_DIR --prefix WORK_DIR/stage`, then the consumer finds the
 #               package with find_package(rtweekend) and CMAKE_PREFIX_PATH=WORK_DIR/stage.
@@ -39,6 +42,11 @@ set(config_args "")
 if(CONFIG)
   set(config_args --config "${CONFIG}")
 endif()
+# The checkout's build is installed in its own configuration, which may differ from the consumer's.
+set(install_config_args "")
+if(INSTALL_CONFIG)
+  set(install_config_args --config "${INSTALL_CONFIG}")
+endif()
 
 set(configure_args -S "${CONSUMER_DIR}" -B "${WORK_DIR}/build" -G "${GENERATOR}"
     "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
@@ -61,7 +69,7 @@ if(MODE STREQUAL "install")
     message(FATAL_ERROR "consumer_test.cmake: BUILD_DIR '${BUILD_DIR}' is not a directory")
   endif()
   set(stage "${WORK_DIR}/stage")
-  run("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${stage}" ${config_args})
+  run("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${stage}" ${install_config_args})
 
   # Every header of the checkout is installed, and the package files are there.
   file(GLOB headers RELATIVE "${SOURCE_DIR}/rtweekend" "${SOURCE_DIR}/rtweekend/*.h")
