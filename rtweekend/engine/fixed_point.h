@@ -84,9 +84,9 @@ inline void add_fixed3(float r, float g, float b, int64_t limit, int64_t* sum, b
 #if defined(__AVX512DQ__) && defined(__AVX512VL__)
     const __m256d x = _mm256_mul_pd(_mm256_cvtps_pd(_mm_setr_ps(r, g, b, 0.0f)), _mm256_set1_pd(0x1p32));
     const __m256d size = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
-    // exact: limit - 1 < 2^53 where it is the smaller. A comparison, not std::fmin: g++ calls
-    // libm's fmin through the PLT for it (NaN rules), with vzeroupper and the vector registers
-    // spilled around the call, once per sample.
+    // The fast path's bound, min(2^52, limit - 1), exact (limit - 1 < 2^53 where it is the
+    // smaller). A comparison, not std::fmin: g++ calls libm's fmin through the PLT for that (NaN
+    // rules), with vzeroupper and the vector registers spilled around the call, once per sample.
     const double limit_less_one = double(limit) - 1.0;
     const double fast_bound = limit_less_one < 0x1p52 ? limit_less_one : 0x1p52;
     if (_mm256_cmp_pd_mask(size, _mm256_set1_pd(fast_bound), _CMP_LT_OQ) == 0xF) {
