@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace test_bvh {
@@ -320,6 +322,86 @@ TEST_CASE("bvh: spatial splits of triangles that all overlap stay within their b
     for (uint32_t t : bvh.order[size_t(shape_kind::triangle)]) ++seen.at(t);
     CHECK(std::count(seen.begin(), seen.end(), 0) == 0);
     CHECK(bvh.stats.depth < 96 / 3); // the 8-wide tree of a binary tree under 96 levels
+}
+
+// The ray's range [t0, t1] within the box, in double (empty when t0 > t1): the reference the
+// walk's float slab test is checked against.
+void slab_range(const ray3f& r, const box3f& b, double tmin, double tmax, double& t0, double& t1) {
+    t0 = tmin;
+    t1 = tmax;
+    for (int a = 0; a < 3; ++a) {
+        const double o = r.origin[a], d = r.dir[a], lo = b.lo[a], hi = b.hi[a];
+        if (d == 0) {
+            if (o < lo || o > hi) t0 = 1, t1 = 0;
+            continue;
+        }
+        double n = (lo - o) / d, f = (hi - o) / d;
+        if (n > f) std::swap(n, f);
+        t0 = std::max(t0, n);
+        t1 = std::min(t1, f);
+    }
+}
+
+TEST_CASE("bvh: the walk enters every box the ray's range meets, ahead of the origin and behind it") {
+    // The walk reduces its slab distances as integers (detail::intersect_node): exact for boxes
+    // ahead of a ray with tmin >= 0, and never narrower otherwise. Boxes all around the origin,
+    // rays with tmin 0.001 and with tmin -30 (so boxes behind count), infinite and short tmax:
+    // every box whose range is wider than a rounding margin must reach the leaf test, and with
+    // tmin >= 0 no leaf whose box's range is empty by more than that margin may (with tmin < 0
+    // the test may enter boxes behind the origin that the range misses: wasted, never wrong).
+    pcg32 rng = sample_rng(31, 0, 0);
+    std::vector<bvh_primitive> prims;
+    for (uint32_t i = 0; i < 3000; ++i) {
+        box3f b = random_box(rng, 20, 1.0f);
+        b.lo = b.lo - vec3f(10, 10, 10);
+        b.hi = b.hi - vec3f(10, 10, 10);
+        prims.push_back({b, shape_kind::sphere, i});
+    }
+    const bvh8 bvh = build_bvh8(prims);
+    const float inf = std::numeric_limits<float>::infinity();
+    const float tmins[] = {1e-3f, -30.0f};
+    const float tmaxes[] = {inf, 4.0f};
+    int missed = 0, extra = 0, required = 0, rays = 0;
+    for (int k = 0; k < 400; ++k) {
+        ray3f r;
+        r.origin = vec3f(2 * rng.next_float() - 1, 2 * rng.next_float() - 1, 2 * rng.next_float() - 1);
+        vec3f d(2 * rng.next_float() - 1, 2 * rng.next_float() - 1, 2 * rng.next_float() - 1);
+        if (k % 8 == 0) d.y = 0; // along a plane: the tiny-component path
+        r.dir = normalize(d);
+        for (float tmin : tmins)
+            for (float tmax : tmaxes) {
+                ++rays;
+                r.tmin = tmin;
+                std::vector<char> entered(prims.size(), 0);
+                float t = tmax;
+                traverse<false>(bvh, r, t, [&](uint32_t ref, float&) {
+                    box3f leaf; // the leaf's box: its primitives' boxes together
+                    for (uint32_t j = bvh_ref::first(ref); j < bvh_ref::first(ref) + bvh_ref::count(ref); ++j) {
+                        const uint32_t i = bvh.order[0][j];
+                        entered[i] = 1;
+                        leaf.grow(prims[i].bounds.lo);
+                        leaf.grow(prims[i].bounds.hi);
+                    }
+                    double t0, t1;
+                    slab_range(r, leaf, tmin, tmax, t0, t1);
+                    extra += tmin >= 0 && t0 - t1 > 1e-4 * (1 + std::fabs(t0)); // exact for tmin >= 0 only
+                    return false;
+                });
+                for (size_t i = 0; i < prims.size(); ++i) {
+                    double t0, t1;
+                    slab_range(r, prims[i].bounds, tmin, tmax, t0, t1);
+                    const double margin = 1e-4 * (1 + std::fabs(t1));
+                    if (t1 - t0 > margin) {
+                        ++required;
+                        missed += !entered[i];
+                    }
+                }
+            }
+    }
+    CHECK(rays == 1600);
+    CHECK(required > 5000); // the test means something: rays pass several boxes each
+    CHECK(missed == 0);
+    CHECK(extra == 0);
 }
 
 TEST_CASE("bvh: leaf references round-trip their fields") {
