@@ -742,11 +742,11 @@ inline unsigned intersect_node(const bvh_node8& node, const bvh_ray& r, float tm
 #endif
     };
 #if defined(__AVX2__)
-    auto bits = [](__m256 x) { return _mm256_castps_si256(x); };
-    const __m256i tnear = _mm256_max_epi32(_mm256_max_epi32(bits(plane(r.near_plane[0], 0)), bits(plane(r.near_plane[1], 1))),
-                                           _mm256_max_epi32(bits(plane(r.near_plane[2], 2)), bits(_mm256_set1_ps(r.tmin))));
-    const __m256i tfar = _mm256_min_epi32(_mm256_min_epi32(bits(plane(r.far_plane[0], 0)), bits(plane(r.far_plane[1], 1))),
-                                          _mm256_min_epi32(bits(plane(r.far_plane[2], 2)), bits(_mm256_set1_ps(tmax))));
+    auto as_int = [](__m256 x) { return _mm256_castps_si256(x); }; // the same bits
+    const __m256i tnear = _mm256_max_epi32(_mm256_max_epi32(as_int(plane(r.near_plane[0], 0)), as_int(plane(r.near_plane[1], 1))),
+                                           _mm256_max_epi32(as_int(plane(r.near_plane[2], 2)), as_int(_mm256_set1_ps(r.tmin))));
+    const __m256i tfar = _mm256_min_epi32(_mm256_min_epi32(as_int(plane(r.far_plane[0], 0)), as_int(plane(r.far_plane[1], 1))),
+                                          _mm256_min_epi32(as_int(plane(r.far_plane[2], 2)), as_int(_mm256_set1_ps(tmax))));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(tnear_out), tnear);
     if (r.tmin >= 0) {
         const __m256i beyond = _mm256_cmpgt_epi32(tnear, _mm256_add_epi32(tfar, _mm256_set1_epi32(16)));
