@@ -9,7 +9,7 @@
 # which way, which calls are hot. Every scene kind trains (spheres, triangles, quads, lights,
 # textures, media, caustics), so none is laid out as cold code. The images stay deterministic
 # for a given build; another build (with or without PGO) may differ in the last bits, as
-# builds for other processors do. The measured gain and the training's cost: README, "Speed".
+# builds for other processors do. The measured gain: README, "Speed"; the cost: README, "Tests".
 #
 # The counts go next to the instrumented object (g++'s default); a custom command copies them to
 # where the optimised compile of the same source looks for its own (its object's name + .gcda).
@@ -45,8 +45,8 @@ set(pgo_use_counts
     ${PROJECT_BINARY_DIR}/CMakeFiles/rtweekend_compiled_path_tracer.dir/apps/path_tracer_once.cpp.gcda)
 set(pgo_out ${PROJECT_BINARY_DIR}/pgo_training)
 set(pgo_scenes ${PROJECT_SOURCE_DIR}/tests/data)
-# Each render about as long as the others in the instrumented build (about 5 s in all on the Xeon
-# of BENCHMARKS.md): the cover most, as the scene the speed targets are set on.
+# Small sizes: 3.6 s for all of them in the instrumented build on the Xeon of BENCHMARKS.md
+# section 24. The cover has the most samples, as the scene the speed targets are set on.
 set(pgo_renders
     "rtiow_cover.txt --width 400 --spp 4"
     "bunny.txt --width 200 --spp 4"
