@@ -78,7 +78,7 @@ struct checker {
             }
             return;
         }
-        const bvh_node8& node = bvh.nodes.at(ref);
+        const bvh_node8& node = bvh.nodes.at(bvh_ref::node_index(ref));
         for (int i = 0; i < 8; ++i) {
             if (node.child[i] == bvh_ref::empty) continue;
             if (parent) { // the child's box lies inside the parent's slot box
@@ -155,7 +155,7 @@ TEST_CASE("bvh: the 8-wide collapse leaves no inner child its parent has room to
             const int k = children(p);
             slots += size_t(k);
             for (uint32_t c : bvh.nodes[p].child)
-                if (c != bvh_ref::empty && !bvh_ref::is_leaf(c) && k - 1 + children(c) <= 8) ++absorbable;
+                if (c != bvh_ref::empty && !bvh_ref::is_leaf(c) && k - 1 + children(bvh_ref::node_index(c)) <= 8) ++absorbable;
         }
         CAPTURE(seed);
         CHECK(absorbable == 0);
@@ -254,7 +254,7 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
     std::vector<uint32_t> pending{bvh.root};
     REQUIRE_FALSE(bvh_ref::is_leaf(bvh.root));
     while (!pending.empty()) {
-        const bvh_node8& node = bvh.nodes.at(pending.back());
+        const bvh_node8& node = bvh.nodes.at(bvh_ref::node_index(pending.back()));
         pending.pop_back();
         for (int i = 0; i < 8; ++i) {
             const uint32_t child = node.child[i];
@@ -416,8 +416,7 @@ TEST_CASE("bvh: leaf references round-trip their fields") {
     CHECK(bvh_ref::count(ref) == 1u);
     CHECK_FALSE(bvh_ref::is_leaf(42));
     // Every kind the 3 bits can name (1 + kind in bits 29-31: kinds 0 to 6), with the largest
-    // first and count, decodes to itself and never to an inner node; the largest inner node
-    // index is not a leaf.
+    // first and count, decodes to itself and never to an inner node.
     CHECK(bvh_ref::max_first == (1u << 25) - 1);
     for (uint32_t k = 0; k < uint32_t(bvh_ref::max_shape_kinds); ++k) {
         CAPTURE(k);
@@ -428,7 +427,15 @@ TEST_CASE("bvh: leaf references round-trip their fields") {
         CHECK(bvh_ref::count(leaf) == 16u);
         CHECK(leaf != bvh_ref::empty);
     }
-    CHECK_FALSE(bvh_ref::is_leaf(bvh_ref::max_nodes - 1));
+    // An inner node's reference counts 32-byte units, 7 to a node: the last node's reference is
+    // not a leaf, names that node again, and points at its bytes; one node more would be a leaf.
+    const uint32_t last = bvh_ref::node_ref(bvh_ref::max_nodes - 1);
+    CHECK_FALSE(bvh_ref::is_leaf(last));
+    CHECK(bvh_ref::node_index(last) == bvh_ref::max_nodes - 1);
+    CHECK(uint64_t(last) * 32 == uint64_t(bvh_ref::max_nodes - 1) * sizeof(bvh_node8));
+    CHECK(bvh_ref::is_leaf(bvh_ref::node_ref(bvh_ref::max_nodes)));
+    for (uint32_t i : {0u, 1u, 2u, 1000u, 123457u})
+        CHECK(bvh_ref::node_index(bvh_ref::node_ref(i)) == i);
 }
 
 } // namespace test_bvh

@@ -81,20 +81,29 @@ struct bvh_primitive {
     uint32_t index = 0; // the primitive's number among those of its kind
 };
 
-// A reference to a child, 32 bits: an inner node's index, or a leaf packed into the same bits:
-//   bits 29-31: 0 for an inner node (its index in bits 0-28), or 1 + the shape kind of a leaf
-//   bits 25-28: a leaf's count - 1 (1..16)        bits 0-24: its first primitive
-// so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives.
+// A reference to a child, 32 bits: an inner node, or a leaf packed into the same bits:
+//   bits 29-31: 0 for an inner node, or 1 + the shape kind of a leaf
+//   an inner node: bits 0-28 its offset in bvh8::nodes in units of 32 bytes (its index times 7,
+//   a node taking 224 bytes), so that the walk finds its address with one shift and one add;
+//   index * 224 took three instructions more on the walk's critical path, node after node
+//   (BENCHMARKS.md section 25)
+//   a leaf: bits 25-28 its count - 1 (1..16), bits 0-24 its first primitive
+// so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives, and up to 76.7 million nodes.
 namespace bvh_ref {
 inline constexpr uint32_t kind_shift = 29;
 inline constexpr int max_shape_kinds = 7;
 inline constexpr uint32_t max_leaf_size = 16;
 inline constexpr uint32_t max_first = (1u << 25) - 1;
-inline constexpr uint32_t max_nodes = 1u << kind_shift;
+inline constexpr uint32_t first_leaf = 1u << kind_shift; // every reference from here up is a leaf
+inline constexpr uint32_t node_unit = 32;                // bytes
+inline constexpr uint32_t units_per_node = 7;            // sizeof(bvh_node8) / node_unit
+inline constexpr uint32_t max_nodes = (first_leaf - 1) / units_per_node + 1; // the last one's reference is below first_leaf
 inline constexpr uint32_t empty = 0xFFFFFFFFu; // the root of a tree without primitives
 static_assert(shape_kind_count <= max_shape_kinds, "a leaf reference names at most seven shape kinds");
 
-constexpr bool is_leaf(uint32_t ref) { return ref >= max_nodes; }
+constexpr bool is_leaf(uint32_t ref) { return ref >= first_leaf; }
+constexpr uint32_t node_ref(uint32_t index) { return index * units_per_node; }
+constexpr uint32_t node_index(uint32_t ref) { return ref / units_per_node; }
 constexpr shape_kind kind(uint32_t ref) { return static_cast<shape_kind>((ref >> kind_shift) - 1); }
 constexpr uint32_t count(uint32_t ref) { return ((ref >> 25) & 15u) + 1; }
 constexpr uint32_t first(uint32_t ref) { return ref & max_first; }
@@ -109,6 +118,7 @@ struct alignas(32) bvh_node8 {
     float bounds[6][8];
     uint32_t child[8];
 };
+static_assert(sizeof(bvh_node8) == bvh_ref::units_per_node * bvh_ref::node_unit, "a node reference counts 32-byte units");
 
 struct bvh_build_options {
     uint32_t max_leaf_size = 16; // at most bvh_ref::max_leaf_size
@@ -147,6 +157,11 @@ struct bvh_stats {
 class bvh8 {
   public:
     std::vector<bvh_node8> nodes;
+    // The inner node a reference names (see bvh_ref).
+    const bvh_node8& node(uint32_t ref) const { return node_at(nodes.data(), ref); }
+    static const bvh_node8& node_at(const bvh_node8* first, uint32_t ref) {
+        return *reinterpret_cast<const bvh_node8*>(reinterpret_cast<const char*>(first) + size_t(ref) * bvh_ref::node_unit);
+    }
     uint32_t root = bvh_ref::empty;
     // order[kind][k]: which primitive of that kind goes to position k of the kind's leaf storage
     // (with spatial splits, a triangle may go to several positions).
@@ -618,7 +633,7 @@ class bvh_builder {
         const int k = best_split(b, 8);
         collect(node.left, k, children, n);
         collect(node.right, 8 - k, children, n);
-        if (out.nodes.size() >= bvh_ref::max_nodes) throw scene_error("too many BVH nodes (at most 2^29)");
+        if (out.nodes.size() >= bvh_ref::max_nodes) throw scene_error("too many BVH nodes (at most " + std::to_string(bvh_ref::max_nodes) + ")");
         auto index = uint32_t(out.nodes.size());
         out.nodes.emplace_back();
         bvh_node8 filled;
@@ -638,7 +653,7 @@ class bvh_builder {
             filled.child[i] = child;
         }
         out.nodes[index] = filled;
-        return index;
+        return bvh_ref::node_ref(index);
     }
 
     bvh_build_options options_;
@@ -749,8 +764,12 @@ inline unsigned intersect_node(const bvh_node8& node, const bvh_ray& r, float tm
                                           _mm256_min_epi32(as_int(plane(r.far_plane[2], 2)), as_int(_mm256_set1_ps(tmax))));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(tnear_out), tnear);
     if (r.tmin >= 0) {
+#if defined(__AVX512VL__)
+        return unsigned(_mm256_cmple_epi32_mask(tnear, _mm256_add_epi32(tfar, _mm256_set1_epi32(16))));
+#else
         const __m256i beyond = _mm256_cmpgt_epi32(tnear, _mm256_add_epi32(tfar, _mm256_set1_epi32(16)));
         return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(beyond))) ^ 0xFFu;
+#endif
     }
     const __m256 far_widened = _mm256_mul_ps(_mm256_castsi256_ps(tfar), _mm256_set1_ps(bvh_far_scale));
     return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(_mm256_castsi256_ps(tnear), far_widened, _CMP_LE_OQ)));
@@ -794,6 +813,9 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
 
     const detail::bvh_ray ray(r);
     if (!ray.usable) return false; // a ray whose slab distances are not finite: see bvh_ray
+    // Held here rather than read from bvh at every node: the leaf test is a call the compiler
+    // cannot see through, after which it would read the array's address again.
+    const bvh_node8* const nodes = bvh.nodes.data();
     struct entry {
         uint32_t ref;
         float tnear;
@@ -806,8 +828,9 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
     for (;;) {
         if (!bvh_ref::is_leaf(ref)) {
             alignas(32) float tnear[8];
-            unsigned mask = detail::intersect_node(bvh.nodes[ref], ray, tmax, tnear);
-            const uint32_t* child = bvh.nodes[ref].child;
+            const bvh_node8& node = bvh8::node_at(nodes, ref);
+            unsigned mask = detail::intersect_node(node, ray, tmax, tnear);
+            const uint32_t* child = node.child;
             if (mask != 0) {
                 int first = __builtin_ctz(mask);
                 mask &= mask - 1;
@@ -917,7 +940,7 @@ void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, uns
     const floatv infinity(std::numeric_limits<float>::infinity());
     for (;;) {
         if (!bvh_ref::is_leaf(ref)) {
-            const bvh_node8& node = bvh.nodes[ref];
+            const bvh_node8& node = bvh.node(ref);
             const floatv far_limit = floatv::load(tmax);
             entry entered[8];
             float order[8];
