@@ -9,7 +9,8 @@
 // after the other, the order reversed every other round, on one thread: every ray file traced once
 // (one ray at a time, as bench does), or the scene rendered once. It prints, per workload, each
 // build's median, the median of the per-round ratios B/A with its quartiles, and whether the two
-// found the same hits or made the same image, bit for bit.
+// found the same hits or made the same image, bit for bit; when they did not, it exits with 1
+// (after the timings), as embree_bench stops when the hit counts differ.
 //
 // Why: on a shared machine the speed of one process drifts by 10-20 % from minute to minute, so
 // builds timed in separate processes differ by more than most changes do. Interleaved in one
@@ -90,8 +91,9 @@ double quantile(std::vector<double> v, double q) {
 }
 
 // One workload's rounds: a and b time A and B once each and say whether their outputs agree.
+// Returns whether they agreed in every round.
 template <class RunA, class RunB, class Same>
-void compare(const std::string& name, int rounds, const char* unit, RunA run_a, RunB run_b, Same same) {
+bool compare(const std::string& name, int rounds, const char* unit, RunA run_a, RunB run_b, Same same) {
     std::vector<double> ta, tb, ratio;
     bool identical = true;
     for (int r = 0; r < rounds; ++r) {
@@ -113,6 +115,8 @@ void compare(const std::string& name, int rounds, const char* unit, RunA run_a, 
     std::printf("%s: A %.4f s, B %.4f s (medians of %d rounds, %s); speed B/A median %.4f, quartiles %.4f %.4f; %s\n",
                 name.c_str(), quantile(ta, 0.5), quantile(tb, 0.5), rounds, unit, quantile(ratio, 0.5),
                 quantile(ratio, 0.25), quantile(ratio, 0.75), identical ? "outputs identical" : "OUTPUTS DIFFER");
+    if (!identical) std::fprintf(stderr, "ab_compare: error: %s: builds A and B gave different outputs\n", name.c_str());
+    return identical;
 }
 
 } // namespace
@@ -132,18 +136,19 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "ab_compare: error: %s\n", error);
                 return 1;
             }
+        bool identical = true;
         for (size_t f = 0; f < o.rays.size(); ++f) {
             uint64_t hits_a = 0, hits_b = 0;
             double sum_a = 0, sum_b = 0;
             const int which = int(f);
-            compare(
+            identical &= compare(
                 o.rays[f] + " (" + std::to_string(ab_a_ray_count(a, which)) + " rays)", o.rounds, "one pass over the rays",
                 [&] { return ab_a_trace(a, which, &hits_a, &sum_a); }, [&] { return ab_b_trace(b, which, &hits_b, &sum_b); },
                 [&] { return hits_a == hits_b && sum_a == sum_b; });
         }
         ab_a_free_mesh(a);
         ab_b_free_mesh(b);
-        return 0;
+        return identical ? 0 : 1;
     }
     void* a = ab_a_load_scene(o.scene.c_str(), o.width, o.spp, error, sizeof error);
     void* b = a ? ab_b_load_scene(o.scene.c_str(), o.width, o.spp, error, sizeof error) : nullptr;
@@ -152,10 +157,10 @@ int main(int argc, char** argv) {
         return 1;
     }
     uint64_t sum_a = 0, sum_b = 0;
-    compare(
+    const bool identical = compare(
         o.scene, o.rounds, "one render on one thread", [&] { return ab_a_render(a, &sum_a); },
         [&] { return ab_b_render(b, &sum_b); }, [&] { return sum_a == sum_b; });
     ab_a_free_scene(a);
     ab_b_free_scene(b);
-    return 0;
+    return identical ? 0 : 1;
 }
