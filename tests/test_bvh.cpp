@@ -30,7 +30,7 @@ box3f random_box(pcg32& rng, float spread, float size) {
 
 // The BVH over triangles given by their corners, with spatial splits down to nodes of more than
 // 16 triangles; `options` is what it was built with.
-bvh8 build_with_spatial_splits(const std::vector<std::array<vec3f, 3>>& corners, bvh_build_options& options) {
+wide_bvh build_with_spatial_splits(const std::vector<std::array<vec3f, 3>>& corners, bvh_build_options& options) {
     std::vector<bvh_primitive> prims;
     for (uint32_t i = 0; i < corners.size(); ++i) {
         box3f b;
@@ -39,23 +39,23 @@ bvh8 build_with_spatial_splits(const std::vector<std::array<vec3f, 3>>& corners,
     }
     options.triangle_corners = [&corners](uint32_t i) { return corners[i]; };
     options.spatial_min_count = 16;
-    return build_bvh8(prims, options);
+    return build_wide_bvh(prims, options);
 }
 
-bool contains(const bvh_node8& node, int slot, const box3f& b) {
+bool contains(const wide_node& node, int slot, const box3f& b) {
     return node.bounds[0][slot] <= b.lo.x && node.bounds[1][slot] <= b.lo.y && node.bounds[2][slot] <= b.lo.z &&
            node.bounds[3][slot] >= b.hi.x && node.bounds[4][slot] >= b.hi.y && node.bounds[5][slot] >= b.hi.z;
 }
 
 struct checker {
-    const bvh8& bvh;
+    const wide_bvh& bvh;
     const std::vector<bvh_primitive>& prims; // by kind, then index: by_kind[kind][index]
     std::vector<std::vector<const bvh_primitive*>> by_kind;
     std::vector<std::vector<int>> seen;
     uint32_t max_leaf;
     int problems = 0;
 
-    checker(const bvh8& b, const std::vector<bvh_primitive>& p, uint32_t max_leaf)
+    checker(const wide_bvh& b, const std::vector<bvh_primitive>& p, uint32_t max_leaf)
         : bvh(b), prims(p), by_kind(shape_kind_count), seen(shape_kind_count), max_leaf(max_leaf) {
         for (const auto& q : prims) {
             auto t = size_t(q.kind);
@@ -66,7 +66,7 @@ struct checker {
     }
 
     // Every primitive under `ref`, checked to lie inside `box` (when given).
-    void walk(uint32_t ref, const bvh_node8* parent, int slot) {
+    void walk(uint32_t ref, const wide_node* parent, int slot) {
         if (bvh_ref::is_leaf(ref)) {
             auto t = size_t(bvh_ref::kind(ref));
             uint32_t first = bvh_ref::first(ref), count = bvh_ref::count(ref);
@@ -78,8 +78,8 @@ struct checker {
             }
             return;
         }
-        const bvh_node8& node = bvh.nodes.at(bvh_ref::node_index(ref));
-        for (int i = 0; i < 8; ++i) {
+        const wide_node& node = bvh.nodes.at(bvh_ref::node_index(ref));
+        for (int i = 0; i < bvh_width; ++i) {
             if (node.child[i] == bvh_ref::empty) continue;
             if (parent) { // the child's box lies inside the parent's slot box
                 box3f child{{node.bounds[0][i], node.bounds[1][i], node.bounds[2][i]},
@@ -103,14 +103,15 @@ TEST_CASE("bvh: every primitive exactly once, leaves bounded and of one kind, bo
                          tri ? triangles++ : spheres++});
     }
     bvh_build_options options;
-    bvh8 bvh = build_bvh8(prims, options);
+    wide_bvh bvh = build_wide_bvh(prims, options);
     CHECK(bvh.stats.primitives == 5000);
     CHECK(bvh.order[0].size() == spheres);
     CHECK(bvh.order[1].size() == triangles);
     REQUIRE_FALSE(bvh_ref::is_leaf(bvh.root));
     CHECK(bvh.stats.nodes == bvh.nodes.size());
-    CHECK(bvh.stats.bytes() == bvh.nodes.size() * sizeof(bvh_node8));
-    // An 8-wide tree over 5000 primitives in leaves of <= 16: at least log8(5000 / 16) ~ 2.8 deep.
+    CHECK(bvh.stats.bytes() == bvh.nodes.size() * sizeof(wide_node));
+    // A tree over 5000 primitives in leaves of <= 16: at least log_w(5000 / 16) deep for nodes of
+    // w children, 2.8 for 8 and 2.1 for 16, so 3 in whole levels.
     CHECK(bvh.stats.depth >= 3);
 
     checker c(bvh, prims, options.max_leaf_size);
@@ -131,9 +132,9 @@ TEST_CASE("bvh: every primitive exactly once, leaves bounded and of one kind, bo
     CHECK(double(children) / double(bvh.nodes.size()) > 3.0);
 }
 
-TEST_CASE("bvh: the 8-wide collapse leaves no inner child its parent has room to take in") {
-    // The binary tree is collapsed into 8-wide nodes at least SAH cost (bvh.h, plan_collapse).
-    // An inner child C of m children under a parent of k children, where k - 1 + m <= 8, could
+TEST_CASE("bvh: the wide collapse leaves no inner child its parent has room to take in") {
+    // The binary tree is collapsed into wide nodes at least SAH cost (bvh.h, plan_collapse).
+    // An inner child C of m children under a parent of k children, where k - 1 + m <= bvh_width, could
     // be dissolved, its children moved up into the parent: every box stays the same and C's
     // visit is saved, a lower cost. So the cheapest collapse has no such child, whatever the
     // scene. Boxes of positive area, so that every node's visit costs something.
@@ -143,7 +144,7 @@ TEST_CASE("bvh: the 8-wide collapse leaves no inner child its parent has room to
         const int n = 500 + 1500 * int(seed);
         for (int i = 0; i < n; ++i)
             prims.push_back({random_box(rng, 100, 0.2f + 4.0f * rng.next_float()), shape_kind::sphere, uint32_t(i)});
-        const bvh8 bvh = build_bvh8(prims, bvh_build_options{});
+        const wide_bvh bvh = build_wide_bvh(prims, bvh_build_options{});
         auto children = [&](uint32_t node) {
             int count = 0;
             for (uint32_t c : bvh.nodes[node].child) count += c != bvh_ref::empty;
@@ -155,7 +156,7 @@ TEST_CASE("bvh: the 8-wide collapse leaves no inner child its parent has room to
             const int k = children(p);
             slots += size_t(k);
             for (uint32_t c : bvh.nodes[p].child)
-                if (c != bvh_ref::empty && !bvh_ref::is_leaf(c) && k - 1 + children(bvh_ref::node_index(c)) <= 8) ++absorbable;
+                if (c != bvh_ref::empty && !bvh_ref::is_leaf(c) && k - 1 + children(bvh_ref::node_index(c)) <= bvh_width) ++absorbable;
         }
         CAPTURE(seed);
         CHECK(absorbable == 0);
@@ -165,7 +166,7 @@ TEST_CASE("bvh: the 8-wide collapse leaves no inner child its parent has room to
 
 TEST_CASE("bvh: small and degenerate inputs") {
     // Nothing: an empty root.
-    bvh8 none = build_bvh8({});
+    wide_bvh none = build_wide_bvh({});
     CHECK(none.root == bvh_ref::empty);
     CHECK(none.nodes.empty());
 
@@ -173,7 +174,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     std::vector<bvh_primitive> three;
     pcg32 rng = sample_rng(9, 0, 0);
     for (uint32_t i = 0; i < 3; ++i) three.push_back({random_box(rng, 10, 1), shape_kind::sphere, i});
-    bvh8 small = build_bvh8(three);
+    wide_bvh small = build_wide_bvh(three);
     CHECK(small.nodes.empty());
     REQUIRE(bvh_ref::is_leaf(small.root));
     CHECK(bvh_ref::count(small.root) == 3);
@@ -182,7 +183,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     // Two kinds in a tiny scene: split by kind, since a leaf holds one kind.
     std::vector<bvh_primitive> mixed = three;
     mixed.push_back({random_box(rng, 10, 1), shape_kind::triangle, 0});
-    bvh8 m = build_bvh8(mixed);
+    wide_bvh m = build_wide_bvh(mixed);
     REQUIRE_FALSE(bvh_ref::is_leaf(m.root));
     checker cm(m, mixed, bvh_build_options{}.max_leaf_size);
     cm.walk(m.root, nullptr, 0);
@@ -193,7 +194,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     std::vector<bvh_primitive> same;
     box3f b = random_box(rng, 1, 1);
     for (uint32_t i = 0; i < 10000; ++i) same.push_back({b, shape_kind::triangle, i});
-    bvh8 s = build_bvh8(same);
+    wide_bvh s = build_wide_bvh(same);
     checker cs(s, same, bvh_build_options{}.max_leaf_size);
     cs.walk(s.root, nullptr, 0);
     CHECK(cs.problems == 0);
@@ -211,7 +212,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
         t.grow(vec3f(float(i % 2) * 1e-39f, float(i) + 0.5f, 1));
         thin.push_back({t, shape_kind::triangle, i});
     }
-    bvh8 th = build_bvh8(thin);
+    wide_bvh th = build_wide_bvh(thin);
     checker ct(th, thin, bvh_build_options{}.max_leaf_size);
     ct.walk(th.root, nullptr, 0);
     CHECK(ct.problems == 0);
@@ -222,7 +223,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     bvh_build_options big;
     big.max_leaf_size = 64;
     big.primitive_cost = 0.001f; // leaves are nearly free: the builder wants them as big as allowed
-    bvh8 l = build_bvh8(same, big);
+    wide_bvh l = build_wide_bvh(same, big);
     checker cl(l, same, bvh_ref::max_leaf_size);
     cl.walk(l.root, nullptr, 0);
     CHECK(cl.problems == 0);
@@ -243,7 +244,7 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
         corners.push_back({c, c + long_edge, c + short_edge});
     }
     bvh_build_options options;
-    bvh8 bvh = build_with_spatial_splits(corners, options);
+    wide_bvh bvh = build_with_spatial_splits(corners, options);
     const std::vector<uint32_t>& order = bvh.order[size_t(shape_kind::triangle)];
     CHECK(order.size() > corners.size() + corners.size() / 20); // more than 5 % copies: splits happened
     CHECK(order.size() < 2 * corners.size()); // and within reason (budget 1.3, per split at most its node)
@@ -254,9 +255,9 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
     std::vector<uint32_t> pending{bvh.root};
     REQUIRE_FALSE(bvh_ref::is_leaf(bvh.root));
     while (!pending.empty()) {
-        const bvh_node8& node = bvh.nodes.at(bvh_ref::node_index(pending.back()));
+        const wide_node& node = bvh.nodes.at(bvh_ref::node_index(pending.back()));
         pending.pop_back();
-        for (int i = 0; i < 8; ++i) {
+        for (int i = 0; i < bvh_width; ++i) {
             const uint32_t child = node.child[i];
             if (child == bvh_ref::empty) continue;
             const box3f slot{{node.bounds[0][i], node.bounds[1][i], node.bounds[2][i]},
@@ -313,7 +314,7 @@ TEST_CASE("bvh: spatial splits of triangles that all overlap stay within their b
                                    : std::array<vec3f, 3>{vec3f{0, y, 0}, vec3f{100, y, 0.5f}, vec3f{50, y + 0.01f, 3}});
     }
     bvh_build_options options;
-    bvh8 bvh = build_with_spatial_splits(corners, options);
+    wide_bvh bvh = build_with_spatial_splits(corners, options);
     const size_t n = corners.size(), references = bvh.order[size_t(shape_kind::triangle)].size();
     CHECK(references >= n);
     // The budget is checked before each split, which may add at most its node's references.
@@ -321,7 +322,7 @@ TEST_CASE("bvh: spatial splits of triangles that all overlap stay within their b
     std::vector<int> seen(n, 0);
     for (uint32_t t : bvh.order[size_t(shape_kind::triangle)]) ++seen.at(t);
     CHECK(std::count(seen.begin(), seen.end(), 0) == 0);
-    CHECK(bvh.stats.depth < 96 / 3); // the 8-wide tree of a binary tree under 96 levels
+    CHECK(bvh.stats.depth < 96 / 3); // the wide tree of a binary tree under 96 levels
 }
 
 // The ray's range [t0, t1] within the box, in double (empty when t0 > t1): the reference the
@@ -357,7 +358,7 @@ TEST_CASE("bvh: the walk enters every box the ray's range meets, ahead of the or
         b.hi = b.hi - vec3f(10, 10, 10);
         prims.push_back({b, shape_kind::sphere, i});
     }
-    const bvh8 bvh = build_bvh8(prims);
+    const wide_bvh bvh = build_wide_bvh(prims);
     const float inf = std::numeric_limits<float>::infinity();
     const float tmins[] = {1e-3f, -30.0f};
     const float tmaxes[] = {inf, 4.0f};
@@ -427,12 +428,12 @@ TEST_CASE("bvh: leaf references round-trip their fields") {
         CHECK(bvh_ref::count(leaf) == 16u);
         CHECK(leaf != bvh_ref::empty);
     }
-    // An inner node's reference counts 32-byte units, 7 to a node: the last node's reference is
+    // An inner node's reference counts 32-byte units, units_per_node to a node: the last node's reference is
     // not a leaf, names that node again, and points at its bytes; one node more would be a leaf.
     const uint32_t last = bvh_ref::node_ref(bvh_ref::max_nodes - 1);
     CHECK_FALSE(bvh_ref::is_leaf(last));
     CHECK(bvh_ref::node_index(last) == bvh_ref::max_nodes - 1);
-    CHECK(uint64_t(last) * 32 == uint64_t(bvh_ref::max_nodes - 1) * sizeof(bvh_node8));
+    CHECK(uint64_t(last) * 32 == uint64_t(bvh_ref::max_nodes - 1) * sizeof(wide_node));
     CHECK(bvh_ref::is_leaf(bvh_ref::node_ref(bvh_ref::max_nodes)));
     for (uint32_t i : {0u, 1u, 2u, 1000u, 123457u})
         CHECK(bvh_ref::node_index(bvh_ref::node_ref(i)) == i);

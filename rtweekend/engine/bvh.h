@@ -1,18 +1,17 @@
 #pragma once
 // The bounding volume hierarchy: how a ray finds the few primitives it might hit among millions.
 //
-//   bvh8 build_bvh8(const std::vector<bvh_primitive>& prims, const bvh_build_options& = {});
-//   bool traverse(const bvh8&, const ray3f&, float& tmax, leaf_test);   // closest or any hit
+//   wide_bvh build_wide_bvh(const std::vector<bvh_primitive>& prims, const bvh_build_options& = {});
+//   bool traverse(const wide_bvh&, const ray3f&, float& tmax, leaf_test);   // closest or any hit
 //
 // The build is a binary tree split by the surface area heuristic (SAH) with binned centroids
 // (Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies", IEEE RT 2007), and for
 // triangles, when the caller gives their corners, also by planes through them (spatial splits,
-// Stich et al. 2009: see bvh_build_options), which is then collapsed into 8-wide nodes at least
+// Stich et al. 2009: see bvh_build_options), which is then collapsed into wide nodes at least
 // SAH cost (Ylitie, Karras and Laine 2017: see plan_collapse): every node holds the boxes of up to
-// eight children side by side, so one 8-lane SIMD instruction tests a ray against all of them
-// (Dammertz, Hanika and
-// Keller, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays",
-// EGSR 2008; the layout Embree uses). Traversal visits the nearest child first and skips every
+// bvh_width children side by side, so one SIMD instruction per plane tests a ray against all of
+// them (Dammertz, Hanika and Keller, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray
+// Tracing of Incoherent Rays", EGSR 2008; the layout Embree uses). Traversal visits the nearest child first and skips every
 // child that starts beyond the closest hit found so far; an any-hit (shadow) query stops at the
 // first hit.
 //
@@ -43,6 +42,9 @@
 #endif
 
 namespace rt {
+
+// Children per node: one SIMD register of float lanes for each of a node's planes.
+inline constexpr int bvh_width = 8;
 
 // An axis-aligned box in float. Empty when lo > hi (the default).
 struct box3f {
@@ -83,12 +85,13 @@ struct bvh_primitive {
 
 // A reference to a child, 32 bits: an inner node, or a leaf packed into the same bits:
 //   bits 29-31: 0 for an inner node, or 1 + the shape kind of a leaf
-//   an inner node: bits 0-28 its offset in bvh8::nodes in units of 32 bytes (its index times 7,
-//   a node taking 224 bytes), so that the walk finds its address with one shift and one add;
-//   index * 224 took three instructions more on the walk's critical path, node after node
-//   (BENCHMARKS.md section 25)
+//   an inner node: bits 0-28 its offset in wide_bvh::nodes in units of 32 bytes (its index times
+//   units_per_node: 7 for a node of 8 children, 224 bytes), so that the walk finds its address
+//   with one shift and one add; index * 224 took three instructions more on the walk's critical
+//   path, node after node (BENCHMARKS.md section 25)
 //   a leaf: bits 25-28 its count - 1 (1..16), bits 0-24 its first primitive
-// so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives, and up to 76.7 million nodes.
+// so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives, and up to 2^29 /
+// units_per_node nodes (76.7 million of 8 children).
 namespace bvh_ref {
 inline constexpr uint32_t kind_shift = 29;
 inline constexpr int max_shape_kinds = 7;
@@ -96,7 +99,7 @@ inline constexpr uint32_t max_leaf_size = 16;
 inline constexpr uint32_t max_first = (1u << 25) - 1;
 inline constexpr uint32_t first_leaf = 1u << kind_shift; // every reference from here up is a leaf
 inline constexpr uint32_t node_unit = 32;                // bytes
-inline constexpr uint32_t units_per_node = 7;            // sizeof(bvh_node8) / node_unit
+inline constexpr uint32_t units_per_node = 7 * bvh_width / 8; // sizeof(wide_node) / node_unit
 inline constexpr uint32_t max_nodes = (first_leaf - 1) / units_per_node + 1; // the last one's reference is below first_leaf
 inline constexpr uint32_t empty = 0xFFFFFFFFu; // the root of a tree without primitives
 static_assert(shape_kind_count <= max_shape_kinds, "a leaf reference names at most seven shape kinds");
@@ -113,12 +116,12 @@ constexpr uint32_t make_leaf(shape_kind k, uint32_t first, uint32_t count) {
 } // namespace bvh_ref
 
 // Eight children's boxes, coordinate by coordinate: bounds[0..2] are the low x, y, z planes and
-// bounds[3..5] the high ones, eight lanes each. Unused slots hold empty boxes, never hit.
-struct alignas(32) bvh_node8 {
-    float bounds[6][8];
-    uint32_t child[8];
+// bounds[3..5] the high ones, bvh_width lanes each. Unused slots hold empty boxes, never hit.
+struct alignas(bvh_width * 4 >= 64 ? 64 : 32) wide_node {
+    float bounds[6][bvh_width];
+    uint32_t child[bvh_width];
 };
-static_assert(sizeof(bvh_node8) == bvh_ref::units_per_node * bvh_ref::node_unit, "a node reference counts 32-byte units");
+static_assert(sizeof(wide_node) == bvh_ref::units_per_node * bvh_ref::node_unit, "a node reference counts 32-byte units");
 
 struct bvh_build_options {
     uint32_t max_leaf_size = 16; // at most bvh_ref::max_leaf_size
@@ -147,20 +150,20 @@ struct bvh_build_options {
 
 struct bvh_stats {
     size_t primitives = 0;
-    size_t nodes = 0;  // 8-wide inner nodes
+    size_t nodes = 0;  // inner (wide) nodes
     size_t leaves = 0;
-    int depth = 0;     // of the 8-wide tree (a root leaf has depth 0)
+    int depth = 0;     // of the wide tree (a root leaf has depth 0)
     double build_ms = 0;
-    size_t bytes() const { return nodes * sizeof(bvh_node8); }
+    size_t bytes() const { return nodes * sizeof(wide_node); }
 };
 
-class bvh8 {
+class wide_bvh {
   public:
-    std::vector<bvh_node8> nodes;
+    std::vector<wide_node> nodes;
     // The inner node a reference names (see bvh_ref).
-    const bvh_node8& node(uint32_t ref) const { return node_at(nodes.data(), ref); }
-    static const bvh_node8& node_at(const bvh_node8* first, uint32_t ref) {
-        return *reinterpret_cast<const bvh_node8*>(reinterpret_cast<const char*>(first) + size_t(ref) * bvh_ref::node_unit);
+    const wide_node& node(uint32_t ref) const { return node_at(nodes.data(), ref); }
+    static const wide_node& node_at(const wide_node* first, uint32_t ref) {
+        return *reinterpret_cast<const wide_node*>(reinterpret_cast<const char*>(first) + size_t(ref) * bvh_ref::node_unit);
     }
     uint32_t root = bvh_ref::empty;
     // order[kind][k]: which primitive of that kind goes to position k of the kind's leaf storage
@@ -169,20 +172,20 @@ class bvh8 {
     bvh_stats stats;
 };
 
-bvh8 build_bvh8(const std::vector<bvh_primitive>& prims, const bvh_build_options& options = {});
+wide_bvh build_wide_bvh(const std::vector<bvh_primitive>& prims, const bvh_build_options& options = {});
 
 // Walks the tree for a ray with direction r.dir and range (r.tmin, tmax). For every leaf whose
 // box the ray enters before tmax, calls leaf_test(ref, tmax) -> bool, which tests the leaf's
 // primitives, lowers tmax to a closer hit and returns true if it found one. AnyHit stops at the
 // first leaf that reports a hit. Returns whether any leaf did.
 template <bool AnyHit, class LeafTest>
-bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test);
+bool traverse(const wide_bvh& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test);
 
 // Rays walked together, one per floatv lane (closest hits only): the camera rays of a batch,
 // which start close together and point nearly the same way, so they enter mostly the same boxes,
 // and one walk with a SIMD instruction per box and plane serves them all where each would walk
 // alone (Wald, Slusallek, Benthin and Wagner, "Interactive Rendering with Coherent Ray Tracing",
-// EG 2001, for packets; here over the 8-wide tree, a box at a time for all lanes).
+// EG 2001, for packets; here over the wide tree, a box at a time for all lanes).
 // bvh_packet holds lane k's ray as bvh_ray prepares it, so every lane computes the same slab
 // distances its ray alone would.
 struct bvh_packet {
@@ -200,7 +203,7 @@ struct bvh_packet {
 // leaf_test(ref, lanes) with the bits of the lanes that enter it. The lanes that reach the
 // shape a ray's own walk would find as its closest are always among them.
 template <class LeafTest>
-void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, unsigned active, LeafTest&& leaf_test);
+void traverse_packet(const wide_bvh& bvh, const bvh_packet& packet, float* tmax, unsigned active, LeafTest&& leaf_test);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -235,8 +238,8 @@ class bvh_builder {
         binary_.reserve(2 * prims.size() / std::max<uint32_t>(1, options_.max_leaf_size) + 8);
     }
 
-    bvh8 run() {
-        bvh8 out;
+    wide_bvh run() {
+        wide_bvh out;
         out.stats.primitives = refs_.size();
         if (refs_.empty()) return out;
         uint32_t root = build(0, uint32_t(refs_.size()), 0);
@@ -247,6 +250,7 @@ class bvh_builder {
     }
 
   private:
+    static constexpr int W = bvh_width;
     static constexpr int max_bins = 64;
     static constexpr int forced_median_depth = 64;
 
@@ -550,16 +554,16 @@ class bvh_builder {
         return std::clamp(b, 0, bins - 1);
     }
 
-    // Which binary nodes become the 8-wide tree's nodes: the collapse of least SAH cost, by
+    // Which binary nodes become the wide tree's nodes: the collapse of least SAH cost, by
     // dynamic programming over the binary tree (Ylitie, Karras and Laine, "Efficient Incoherent
     // Ray Traversal on GPUs Through Compressed Wide BVHs", HPG 2017, section 3.1, with the leaves
     // kept as the binary build made them). cost(b, i) is the least cost of binary node b's
-    // subtree given at most i slots of its 8-wide parent: a leaf costs its primitives; an inner
-    // node in one slot is an 8-wide node of its own (its area times node_cost, plus its two
-    // children sharing 8 slots); given more slots it may instead hand them to its children.
-    // Opening the largest inner child until there are eight is one such collapse, so this one
-    // costs at most as much.
-    float& cost(uint32_t b, int slots) { return cost_[size_t(b) * 8 + size_t(slots - 1)]; }
+    // subtree given at most i slots of its wide parent: a leaf costs its primitives; an inner
+    // node in one slot is a wide node of its own (its area times node_cost, plus its two
+    // children sharing bvh_width slots); given more slots it may instead hand them to its
+    // children. Opening the largest inner child until there are bvh_width is one such collapse,
+    // so this one costs at most as much.
+    float& cost(uint32_t b, int slots) { return cost_[size_t(b) * W + size_t(slots - 1)]; }
 
     // The slots (1 .. slots - 1) for inner node b's left child, the rest for its right, that
     // cost least; cost_of_split gets that cost.
@@ -579,24 +583,24 @@ class bvh_builder {
     }
 
     void plan_collapse() {
-        cost_.assign(binary_.size() * 8, 0.0f);
+        cost_.assign(binary_.size() * W, 0.0f);
         // Children precede their parents in binary_ (make_inner comes after both are built).
         for (uint32_t b = 0; b < binary_.size(); ++b) {
             const binary_node& n = binary_[b];
             if (n.leaf) {
                 const float c = n.bounds.half_area() * options_.primitive_cost * float(n.count);
-                for (int i = 1; i <= 8; ++i) cost(b, i) = c;
+                for (int i = 1; i <= W; ++i) cost(b, i) = c;
                 continue;
             }
-            float split[9]; // split[i]: the best sharing of i slots between the two children
-            for (int i = 2; i <= 8; ++i) best_split(b, i, &split[i]);
-            cost(b, 1) = n.bounds.half_area() * options_.node_cost + split[8];
-            for (int i = 2; i <= 8; ++i) cost(b, i) = std::min(cost(b, i - 1), split[i]);
+            float split[W + 1]; // split[i]: the best sharing of i slots between the two children
+            for (int i = 2; i <= W; ++i) best_split(b, i, &split[i]);
+            cost(b, 1) = n.bounds.half_area() * options_.node_cost + split[W];
+            for (int i = 2; i <= W; ++i) cost(b, i) = std::min(cost(b, i - 1), split[i]);
         }
     }
 
     // Appends the subtrees that binary node b's share of `slots` slots holds, as plan_collapse
-    // costed them: b itself (a leaf, or an inner node that gets an 8-wide node), or its
+    // costed them: b itself (a leaf, or an inner node that gets a wide node), or its
     // children's subtrees.
     void collect(uint32_t b, int slots, uint32_t* children, int& n) {
         if (binary_[b].leaf || slots == 1) {
@@ -613,8 +617,8 @@ class bvh_builder {
         collect(binary_[b].right, slots - k, children, n);
     }
 
-    // Writes the 8-wide subtree for binary node b and returns the reference to it.
-    uint32_t emit(uint32_t b, bvh8& out, int depth) {
+    // Writes the wide subtree for binary node b and returns the reference to it.
+    uint32_t emit(uint32_t b, wide_bvh& out, int depth) {
         const binary_node& node = binary_[b];
         out.stats.depth = std::max(out.stats.depth, depth);
         if (node.leaf) {
@@ -627,17 +631,17 @@ class bvh_builder {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) order.push_back(refs_[i].index);
             return bvh_ref::make_leaf(kind, first, node.count);
         }
-        // Its children: the binary subtrees plan_collapse chose for its eight slots.
-        uint32_t children[8];
+        // Its children: the binary subtrees plan_collapse chose for its bvh_width slots.
+        uint32_t children[W];
         int n = 0;
-        const int k = best_split(b, 8);
+        const int k = best_split(b, W);
         collect(node.left, k, children, n);
-        collect(node.right, 8 - k, children, n);
+        collect(node.right, W - k, children, n);
         if (out.nodes.size() >= bvh_ref::max_nodes) throw scene_error("too many BVH nodes (at most " + std::to_string(bvh_ref::max_nodes) + ")");
         auto index = uint32_t(out.nodes.size());
         out.nodes.emplace_back();
-        bvh_node8 filled;
-        for (int i = 0; i < 8; ++i) {
+        wide_node filled;
+        for (int i = 0; i < W; ++i) {
             box3f box; // empty for unused slots
             uint32_t child = bvh_ref::empty;
             if (i < n) {
@@ -659,7 +663,7 @@ class bvh_builder {
     bvh_build_options options_;
     std::vector<ref> refs_;
     std::vector<binary_node> binary_;
-    std::vector<float> cost_; // plan_collapse's cost(b, slots), 8 per binary node
+    std::vector<float> cost_; // plan_collapse's cost(b, slots), bvh_width per binary node
     // Spatial splits: whether they are tried, the triangles' corners, the overlap below which a
     // split by centroids is good enough, and the references made so far (a triangle split in two
     // counts twice) against their budget.
@@ -726,7 +730,7 @@ struct bvh_ray {
 // 2013, bounds the error at 1 + 2 gamma_3; this factor covers it with room to spare).
 inline constexpr float bvh_far_scale = 1.0f + 8.0f * std::numeric_limits<float>::epsilon();
 
-// Tests the ray against a node's eight boxes: one bit per child entered before tmax, and each
+// Tests the ray against a node's boxes: one bit per child entered before tmax, and each
 // child's entry distance.
 //
 // With AVX2 the walk's critical path (node load, slab distances, the two reductions, the
@@ -746,8 +750,9 @@ inline constexpr float bvh_far_scale = 1.0f + 8.0f * std::numeric_limits<float>:
 //     of integers too, exact for an entry distance >= 0. An exit at +inf (an infinite box) reads
 //     as above every finite value, one at -inf (an empty slot) as negative: entered and not.
 //   - A ray with tmin < 0 compares the reduced distances as floats, widened by bvh_far_scale.
-inline unsigned intersect_node(const bvh_node8& node, const bvh_ray& r, float tmax, float* tnear_out) {
+inline unsigned intersect_node(const wide_node& node, const bvh_ray& r, float tmax, float* tnear_out) {
 #if defined(__AVX__)
+    static_assert(bvh_width == 8, "the AVX test is of eight boxes, one 256-bit register a plane");
     auto plane = [&](int p, int a) {
         __m256 b = _mm256_load_ps(node.bounds[p]);
 #if defined(__FMA__)
@@ -785,7 +790,7 @@ inline unsigned intersect_node(const bvh_node8& node, const bvh_ray& r, float tm
 #endif
 #else
     unsigned mask = 0;
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < bvh_width; ++i) {
         float tn = r.tmin, tf = tmax;
         for (int a = 0; a < 3; ++a) {
             tn = fmax_inline(tn, node.bounds[r.near_plane[a]][i] * r.inv[a] - r.origin_inv[a]);
@@ -800,15 +805,15 @@ inline unsigned intersect_node(const bvh_node8& node, const bvh_ray& r, float tm
 
 } // namespace detail
 
-inline bvh8 build_bvh8(const std::vector<bvh_primitive>& prims, const bvh_build_options& options) {
+inline wide_bvh build_wide_bvh(const std::vector<bvh_primitive>& prims, const bvh_build_options& options) {
     auto start = std::chrono::steady_clock::now();
-    bvh8 out = detail::bvh_builder(prims, options).run();
+    wide_bvh out = detail::bvh_builder(prims, options).run();
     out.stats.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
 
 template <bool AnyHit, class LeafTest>
-bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test) {
+bool traverse(const wide_bvh& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test) {
     if (bvh.root == bvh_ref::empty) return false;
     if (bvh_ref::is_leaf(bvh.root)) return leaf_test(bvh.root, tmax);
 
@@ -816,20 +821,20 @@ bool traverse(const bvh8& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_test
     if (!ray.usable) return false; // a ray whose slab distances are not finite: see bvh_ray
     // Held here rather than read from bvh at every node: the leaf test is a call the compiler
     // cannot see through, after which it would read the array's address again.
-    const bvh_node8* const nodes = bvh.nodes.data();
+    const wide_node* const nodes = bvh.nodes.data();
     struct entry {
         uint32_t ref;
         float tnear;
     };
     // Depth < 96 (see bvh_builder) and at most 7 entries pushed per level.
-    entry stack[7 * 96 + 8];
+    entry stack[(bvh_width - 1) * 96 + bvh_width];
     int top = 0;
     bool found = false;
     uint32_t ref = bvh.root;
     for (;;) {
         if (!bvh_ref::is_leaf(ref)) {
-            alignas(32) float tnear[8];
-            const bvh_node8& node = bvh8::node_at(nodes, ref);
+            alignas(64) float tnear[bvh_width];
+            const wide_node& node = wide_bvh::node_at(nodes, ref);
             unsigned mask = detail::intersect_node(node, ray, tmax, tnear);
             const uint32_t* child = node.child;
             if (mask != 0) {
@@ -920,7 +925,7 @@ inline bvh_packet::bvh_packet(const ray_lanes& rays, const unsigned dir_signs[3]
 }
 
 template <class LeafTest>
-void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, unsigned active, LeafTest&& leaf_test) {
+void traverse_packet(const wide_bvh& bvh, const bvh_packet& packet, float* tmax, unsigned active, LeafTest&& leaf_test) {
     active &= packet.usable;
     if (bvh.root == bvh_ref::empty || active == 0) return;
     if (bvh_ref::is_leaf(bvh.root)) {
@@ -934,25 +939,25 @@ void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, uns
         unsigned lanes;
     };
     // Depth < 96 (see bvh_builder) and at most 7 entries pushed per level.
-    entry stack[7 * 96 + 8];
+    entry stack[(bvh_width - 1) * 96 + bvh_width];
     int top = 0;
     uint32_t ref = bvh.root;
     unsigned lanes = active;
     const floatv infinity(std::numeric_limits<float>::infinity());
     for (;;) {
         if (!bvh_ref::is_leaf(ref)) {
-            const bvh_node8& node = bvh.node(ref);
+            const wide_node& node = bvh.node(ref);
             const floatv far_limit = floatv::load(tmax);
-            entry entered[8];
-            float order[8];
-            // First the eight tests, into a mask of the children entered; then only those. A
+            entry entered[bvh_width];
+            float order[bvh_width];
+            // First the bvh_width tests, into a mask of the children entered; then only those. A
             // branch on each child's test was mispredicted often (which children a packet
             // enters is the scene's business); this walk's one branch per entered child ends
             // its loop once.
-            floatv child_tnear[8];
-            unsigned child_lanes[8];
+            floatv child_tnear[bvh_width];
+            unsigned child_lanes[bvh_width];
             unsigned children = 0;
-            for (int c = 0; c < 8; ++c) {
+            for (int c = 0; c < bvh_width; ++c) {
                 // The slab test of a ray's own walk (detail::intersect_node), lane by lane: each
                 // lane's near plane on an axis picked by its direction's sign, as bvh_ray picks it
                 // (so an empty slot, low planes +inf and high ones -inf, is entered by no lane).
@@ -973,7 +978,7 @@ void traverse_packet(const bvh8& bvh, const bvh_packet& packet, float* tmax, uns
             int n = 0;
             for (unsigned m = children; m != 0; m &= m - 1, ++n) {
                 const int c = __builtin_ctz(m);
-                const int slot = n & 7; // n itself (eight bits, n < 8), as the compiler cannot tell
+                const int slot = n & (bvh_width - 1); // n itself (n < bvh_width, a power of 2), as the compiler cannot tell
                 entered[slot] = {child_tnear[c], node.child[c], child_lanes[c]};
                 order[slot] = reduce_min(select(lanes_of(child_lanes[c]), child_tnear[c], infinity)); // its nearest lane's entry
             }

@@ -71,7 +71,7 @@ class compiled_scene {
     user_shape_set user_shapes; // user-written hittables with a bounding box
     moving_sphere_set moving_spheres; // book 2's motion blur
     instance_set instances;     // objects placed by an affine transform
-    bvh8 bvh;                   // over every set
+    wide_bvh bvh;                   // over every set
     // The objects instances place: each a subtree of built-in shapes compiled once, with sets and
     // a BVH of its own in its own frame (origin zero), sharing this scene's material table. An
     // object holds no instances and no user shapes, and its emitters are not light-sampled (a

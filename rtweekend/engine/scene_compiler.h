@@ -218,7 +218,7 @@ class scene_compiler {
         bvh_build_options options;
         // Triangles may be split by planes through them (bvh.h): a mesh's boxes overlap less.
         if (!triangles_.empty()) options.triangle_corners = [this](uint32_t i) { return triangles_[i].v; };
-        out_.bvh = build_bvh8(prims, options);
+        out_.bvh = build_wide_bvh(prims, options);
         // One kind of shape only (counted in prims: order names a split triangle more than once).
         for (int k = 0; k < shape_kind_count; ++k) {
             auto of_kind = [k](const bvh_primitive& p) { return int(p.kind) == k; };
