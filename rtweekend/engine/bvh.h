@@ -43,8 +43,17 @@
 
 namespace rt {
 
-// Children per node: one SIMD register of float lanes for each of a node's planes.
+// Children per node: one SIMD register of float lanes for each of a node's planes, so 16 with
+// AVX-512 and 8 otherwise. On the Intel Xeon of BENCHMARKS.md section 26 nodes of 16 traced mesh
+// rays 11-20 % faster than nodes of 8: the same leaves under a tree one or two levels shallower,
+// so fewer node loads a ray waits on. The hits are the same at either width, as ties between
+// shapes are broken by index, not by the order of the walk (leaf_query.h, beats); only a user's
+// shape that draws random numbers in its hit test (book 2's constant_medium) may draw others.
+#if defined(__AVX512F__)
+inline constexpr int bvh_width = 16;
+#else
 inline constexpr int bvh_width = 8;
+#endif
 
 // An axis-aligned box in float. Empty when lo > hi (the default).
 struct box3f {
@@ -86,12 +95,12 @@ struct bvh_primitive {
 // A reference to a child, 32 bits: an inner node, or a leaf packed into the same bits:
 //   bits 29-31: 0 for an inner node, or 1 + the shape kind of a leaf
 //   an inner node: bits 0-28 its offset in wide_bvh::nodes in units of 32 bytes (its index times
-//   units_per_node: 7 for a node of 8 children, 224 bytes), so that the walk finds its address
-//   with one shift and one add; index * 224 took three instructions more on the walk's critical
-//   path, node after node (BENCHMARKS.md section 25)
+//   units_per_node: 7 for a node of 8 children, 224 bytes; 14 for one of 16, 448 bytes), so that
+//   the walk finds its address with one shift and one add; index * 224 took three instructions
+//   more on the walk's critical path, node after node (BENCHMARKS.md section 25)
 //   a leaf: bits 25-28 its count - 1 (1..16), bits 0-24 its first primitive
 // so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives, and up to 2^29 /
-// units_per_node nodes (76.7 million of 8 children).
+// units_per_node nodes (76.7 million of 8 children, 38.3 million of 16).
 namespace bvh_ref {
 inline constexpr uint32_t kind_shift = 29;
 inline constexpr int max_shape_kinds = 7;
@@ -751,7 +760,26 @@ inline constexpr float bvh_far_scale = 1.0f + 8.0f * std::numeric_limits<float>:
 //     as above every finite value, one at -inf (an empty slot) as negative: entered and not.
 //   - A ray with tmin < 0 compares the reduced distances as floats, widened by bvh_far_scale.
 inline unsigned intersect_node(const wide_node& node, const bvh_ray& r, float tmax, float* tnear_out) {
-#if defined(__AVX__)
+#if defined(__AVX512F__)
+    // Sixteen boxes, one 512-bit register a plane; the same steps as the AVX2 test below.
+    static_assert(bvh_width == 16, "the AVX-512 test is of sixteen boxes");
+    auto plane = [&](int p, int a) {
+        return _mm512_castps_si512(
+            _mm512_fmsub_ps(_mm512_load_ps(node.bounds[p]), _mm512_set1_ps(r.inv[a]), _mm512_set1_ps(r.origin_inv[a])));
+    };
+    // The masked forms with every lane kept are the plain instructions; g++ 12's unmasked ones
+    // start from an "undefined" register that -Wmaybe-uninitialized reports (GCC bug 105593).
+    auto imax = [](__m512i a, __m512i b) { return _mm512_mask_max_epi32(a, 0xFFFF, a, b); };
+    auto imin = [](__m512i a, __m512i b) { return _mm512_mask_min_epi32(a, 0xFFFF, a, b); };
+    const __m512i tnear = imax(imax(plane(r.near_plane[0], 0), plane(r.near_plane[1], 1)),
+                               imax(plane(r.near_plane[2], 2), _mm512_castps_si512(_mm512_set1_ps(r.tmin))));
+    const __m512i tfar = imin(imin(plane(r.far_plane[0], 0), plane(r.far_plane[1], 1)),
+                              imin(plane(r.far_plane[2], 2), _mm512_castps_si512(_mm512_set1_ps(tmax))));
+    _mm512_storeu_si512(tnear_out, tnear);
+    if (r.tmin >= 0) return unsigned(_mm512_cmple_epi32_mask(tnear, _mm512_add_epi32(tfar, _mm512_set1_epi32(16))));
+    const __m512 far_widened = _mm512_mul_ps(_mm512_castsi512_ps(tfar), _mm512_set1_ps(bvh_far_scale));
+    return unsigned(_mm512_cmp_ps_mask(_mm512_castsi512_ps(tnear), far_widened, _CMP_LE_OQ));
+#elif defined(__AVX__)
     static_assert(bvh_width == 8, "the AVX test is of eight boxes, one 256-bit register a plane");
     auto plane = [&](int p, int a) {
         __m256 b = _mm256_load_ps(node.bounds[p]);
