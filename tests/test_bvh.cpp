@@ -156,7 +156,9 @@ TEST_CASE("bvh: the wide collapse leaves no inner child its parent has room to t
             const int k = children(p);
             slots += size_t(k);
             for (uint32_t c : bvh.nodes[p].child)
-                if (c != bvh_ref::empty && !bvh_ref::is_leaf(c) && k - 1 + children(bvh_ref::node_index(c)) <= bvh_width) ++absorbable;
+                if (c != bvh_ref::empty && !bvh_ref::is_leaf(c) &&
+                    k - 1 + children(bvh_ref::node_index(c)) <= bvh_width)
+                    ++absorbable;
         }
         CAPTURE(seed);
         CHECK(absorbable == 0);

@@ -11,9 +11,9 @@
 // SAH cost (Ylitie, Karras and Laine 2017: see plan_collapse): every node holds the boxes of up to
 // bvh_width children side by side, so one SIMD instruction per plane tests a ray against all of
 // them (Dammertz, Hanika and Keller, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray
-// Tracing of Incoherent Rays", EGSR 2008; the layout Embree uses). Traversal visits the nearest child first and skips every
-// child that starts beyond the closest hit found so far; an any-hit (shadow) query stops at the
-// first hit.
+// Tracing of Incoherent Rays", EGSR 2008; the layout Embree uses). Traversal visits the nearest
+// child first and skips every child that starts beyond the closest hit found so far; an any-hit
+// (shadow) query stops at the first hit.
 //
 // The tree knows primitives only as boxes of a shape kind (leaf_query.h). A leaf holds up to 16
 // primitives of one kind, stored contiguously: `order` tells the caller in which order to lay out
@@ -108,8 +108,11 @@ inline constexpr uint32_t max_leaf_size = 16;
 inline constexpr uint32_t max_first = (1u << 25) - 1;
 inline constexpr uint32_t first_leaf = 1u << kind_shift; // every reference from here up is a leaf
 inline constexpr uint32_t node_unit = 32;                // bytes
-inline constexpr uint32_t units_per_node = 7 * bvh_width / 8; // sizeof(wide_node) / node_unit
-inline constexpr uint32_t max_nodes = (first_leaf - 1) / units_per_node + 1; // the last one's reference is below first_leaf
+// sizeof(wide_node) / node_unit: six planes and the references, a float or a reference per child
+inline constexpr uint32_t units_per_node =
+    uint32_t((6 * sizeof(float) + sizeof(uint32_t)) * bvh_width / node_unit);
+// The last node's reference is below first_leaf.
+inline constexpr uint32_t max_nodes = (first_leaf - 1) / units_per_node + 1;
 inline constexpr uint32_t empty = 0xFFFFFFFFu; // the root of a tree without primitives
 static_assert(shape_kind_count <= max_shape_kinds, "a leaf reference names at most seven shape kinds");
 
@@ -124,13 +127,15 @@ constexpr uint32_t make_leaf(shape_kind k, uint32_t first, uint32_t count) {
 }
 } // namespace bvh_ref
 
-// Eight children's boxes, coordinate by coordinate: bounds[0..2] are the low x, y, z planes and
-// bounds[3..5] the high ones, bvh_width lanes each. Unused slots hold empty boxes, never hit.
-struct alignas(bvh_width * 4 >= 64 ? 64 : 32) wide_node {
+// bvh_width children's boxes, coordinate by coordinate: bounds[0..2] are the low x, y, z planes
+// and bounds[3..5] the high ones, bvh_width lanes each, every plane one aligned SIMD register.
+// Unused slots hold empty boxes, never hit.
+struct alignas(bvh_width * sizeof(float)) wide_node {
     float bounds[6][bvh_width];
     uint32_t child[bvh_width];
 };
-static_assert(sizeof(wide_node) == bvh_ref::units_per_node * bvh_ref::node_unit, "a node reference counts 32-byte units");
+static_assert(sizeof(wide_node) == bvh_ref::units_per_node * bvh_ref::node_unit,
+              "a node reference counts 32-byte units");
 
 struct bvh_build_options {
     uint32_t max_leaf_size = 16; // at most bvh_ref::max_leaf_size
@@ -172,7 +177,8 @@ class wide_bvh {
     // The inner node a reference names (see bvh_ref).
     const wide_node& node(uint32_t ref) const { return node_at(nodes.data(), ref); }
     static const wide_node& node_at(const wide_node* first, uint32_t ref) {
-        return *reinterpret_cast<const wide_node*>(reinterpret_cast<const char*>(first) + size_t(ref) * bvh_ref::node_unit);
+        const char* bytes = reinterpret_cast<const char*>(first) + size_t(ref) * bvh_ref::node_unit;
+        return *reinterpret_cast<const wide_node*>(bytes);
     }
     uint32_t root = bvh_ref::empty;
     // order[kind][k]: which primitive of that kind goes to position k of the kind's leaf storage
@@ -854,7 +860,7 @@ bool traverse(const wide_bvh& bvh, const ray3f& r, float& tmax, LeafTest&& leaf_
         uint32_t ref;
         float tnear;
     };
-    // Depth < 96 (see bvh_builder) and at most 7 entries pushed per level.
+    // Depth < 96 (see bvh_builder) and at most bvh_width - 1 entries pushed per level.
     entry stack[(bvh_width - 1) * 96 + bvh_width];
     int top = 0;
     bool found = false;
@@ -966,7 +972,7 @@ void traverse_packet(const wide_bvh& bvh, const bvh_packet& packet, float* tmax,
         uint32_t ref;
         unsigned lanes;
     };
-    // Depth < 96 (see bvh_builder) and at most 7 entries pushed per level.
+    // Depth < 96 (see bvh_builder) and at most bvh_width - 1 entries pushed per level.
     entry stack[(bvh_width - 1) * 96 + bvh_width];
     int top = 0;
     uint32_t ref = bvh.root;
@@ -1006,7 +1012,8 @@ void traverse_packet(const wide_bvh& bvh, const bvh_packet& packet, float* tmax,
             int n = 0;
             for (unsigned m = children; m != 0; m &= m - 1, ++n) {
                 const int c = __builtin_ctz(m);
-                const int slot = n & (bvh_width - 1); // n itself (n < bvh_width, a power of 2), as the compiler cannot tell
+                // n itself (n < bvh_width, a power of 2), as the compiler cannot tell
+                const int slot = n & (bvh_width - 1);
                 entered[slot] = {child_tnear[c], node.child[c], child_lanes[c]};
                 order[slot] = reduce_min(select(lanes_of(child_lanes[c]), child_tnear[c], infinity)); // its nearest lane's entry
             }
