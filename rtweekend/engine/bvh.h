@@ -49,11 +49,19 @@ namespace rt {
 // so fewer node loads a ray waits on. The hits are the same at either width, as ties between
 // shapes are broken by index, not by the order of the walk (leaf_query.h, beats); only a user's
 // shape that draws random numbers in its hit test (book 2's constant_medium) may draw others.
+// A build may choose 8 with AVX-512 too (-DRTWEEKEND_BVH_WIDTH=8), to compare the two widths on
+// one machine (apps/ab_compare, RTWEEKEND_AB_A_DEFINITIONS).
+#if !defined(RTWEEKEND_BVH_WIDTH)
 #if defined(__AVX512F__)
-inline constexpr int bvh_width = 16;
+#define RTWEEKEND_BVH_WIDTH 16
 #else
-inline constexpr int bvh_width = 8;
+#define RTWEEKEND_BVH_WIDTH 8
 #endif
+#endif
+#if !(RTWEEKEND_BVH_WIDTH == 8 || (RTWEEKEND_BVH_WIDTH == 16 && defined(__AVX512F__)))
+#error "RTWEEKEND_BVH_WIDTH must be 8, or 16 where the compiler targets AVX-512"
+#endif
+inline constexpr int bvh_width = RTWEEKEND_BVH_WIDTH;
 
 // An axis-aligned box in float. Empty when lo > hi (the default).
 struct box3f {
@@ -766,7 +774,7 @@ inline constexpr float bvh_far_scale = 1.0f + 8.0f * std::numeric_limits<float>:
 //     as above every finite value, one at -inf (an empty slot) as negative: entered and not.
 //   - A ray with tmin < 0 compares the reduced distances as floats, widened by bvh_far_scale.
 inline unsigned intersect_node(const wide_node& node, const bvh_ray& r, float tmax, float* tnear_out) {
-#if defined(__AVX512F__)
+#if RTWEEKEND_BVH_WIDTH == 16
     // Sixteen boxes, one 512-bit register a plane; the same steps as the AVX2 test below.
     static_assert(bvh_width == 16, "the AVX-512 test is of sixteen boxes");
     auto plane = [&](int p, int a) {
