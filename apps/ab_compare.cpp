@@ -150,7 +150,11 @@ int main(int argc, char** argv) {
         ab_b_free_mesh(b);
         return identical ? 0 : 1;
     }
+    // Each build loads the scene as a new program would: Perlin noise draws its tables from the C
+    // library's rand() (as the book's does), whose state the two builds share in this process.
+    std::srand(1);
     void* a = ab_a_load_scene(o.scene.c_str(), o.width, o.spp, error, sizeof error);
+    std::srand(1);
     void* b = a ? ab_b_load_scene(o.scene.c_str(), o.width, o.spp, error, sizeof error) : nullptr;
     if (!a || !b) {
         std::fprintf(stderr, "ab_compare: error: %s\n", error);
