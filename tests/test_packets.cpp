@@ -106,6 +106,49 @@ std::vector<ray3f> incoherent_rays(const compiled_scene& s, double spread, int c
 
 } // namespace
 
+TEST_CASE("packets: a packet's rays go into lanes float for float, zeros past the count") {
+    // detail::rays_to_lanes against its definition, written out here: lane a of ray k is its
+    // origin (a < 3), direction (3-5) or tmin (6), t_best its tmax; bit k of dir_signs[a] the sign
+    // bit of its direction (so -0 counts as negative); lanes from count on hold +0.
+    constexpr int W = int(floatv::width);
+    pcg32 rng(7, 3);
+    auto any = [&](int k) {
+        if (k % 5 == 0) return (k % 2 ? -0.0f : 0.0f);
+        return float(rng.next_double() * 200.0 - 100.0);
+    };
+    for (int count = 1; count <= W; ++count) {
+        std::vector<ray3f> rays(size_t(count) + 1); // one more ray after them, never read
+        for (int k = 0; k <= count; ++k) {
+            ray3f& r = rays[size_t(k)];
+            r.origin = {any(k + 1), any(k + 2), any(k + 3)};
+            r.dir = {any(k), any(k + 4), any(k + 6)};
+            r.tmin = float(rng.next_double());
+            r.tmax = k % 3 ? float(rng.next_double() * 1e3) : std::numeric_limits<float>::infinity();
+            r.time = 0.5f;
+        }
+        alignas(64) float lane[7][W];
+        alignas(64) float t_best[W];
+        unsigned signs[3];
+        detail::rays_to_lanes(rays.data(), count, lane, t_best, signs);
+        CAPTURE(count);
+        for (int k = 0; k < W; ++k) {
+            const ray3f r = k < count ? rays[size_t(k)] : ray3f{{0, 0, 0}, {0, 0, 0}, 0.0f, 0.0f, 0.0f};
+            const float expect[8] = {r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax};
+            for (int a = 0; a < 8; ++a) {
+                const float got = a < 7 ? lane[a][k] : t_best[k];
+                CAPTURE(k);
+                CAPTURE(a);
+                CHECK(std::memcmp(&got, &expect[a], sizeof got) == 0); // bit for bit: -0 stays -0
+            }
+        }
+        for (int a = 0; a < 3; ++a) {
+            unsigned expect = 0;
+            for (int k = 0; k < count; ++k) expect |= unsigned(std::signbit(rays[size_t(k)].dir[a])) << k;
+            CHECK(signs[a] == expect);
+        }
+    }
+}
+
 TEST_CASE("packets: the cover scene's camera rays and bounce rays find what each finds alone") {
     scene_description d = load_scene(std::string(RTWEEKEND_TEST_DATA) + "/rtiow_cover.txt");
     const compiled_scene s = compile_scene(d.world, d.cam.lookfrom);

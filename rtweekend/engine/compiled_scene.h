@@ -175,6 +175,7 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
     constexpr int W = int(floatv::width);
 #if defined(__AVX__)
     static_assert(offsetof(ray3f, tmax) == 7 * sizeof(float), "origin, dir, tmin and tmax lead a ray");
+    static_assert(W % 8 == 0, "AVX lanes come in blocks of 8");
     constexpr int blocks = W / 8; // 1 with AVX, 2 with AVX-512
     __m256 column[blocks][8];
     for (int h = 0; h < blocks; ++h) {
@@ -197,7 +198,7 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
             column[h][a + 4] = _mm256_permute2f128_ps(u[a], u[a + 4], 0x31);
         }
     }
-    const unsigned used = count >= W ? (1u << W) - 1u : (1u << count) - 1u;
+    // The lanes from count on are +0: their sign bits are clear.
     for (int a = 0; a < 8; ++a) {
         float* out = a < 7 ? lane[a] : t_best;
         unsigned signs = 0;
@@ -205,7 +206,7 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
             _mm256_store_ps(out + 8 * h, column[h][a]);
             signs |= unsigned(_mm256_movemask_ps(column[h][a])) << (8 * h);
         }
-        if (a >= 3 && a < 6) dir_signs[a - 3] = signs & used;
+        if (a >= 3 && a < 6) dir_signs[a - 3] = signs;
     }
 #else
     for (int a = 0; a < 3; ++a) dir_signs[a] = 0;
