@@ -3,6 +3,8 @@
 // rec.v from get_sphere_uv) and book 3's light sampling (pdf_value, random: the cone of
 // directions towards the sphere).
 //
+// sphere(center, radius): book 1's sphere before materials (sections 6 to 9), grey diffuse.
+//
 // sphere(center1, center2, radius, material): book 2's moving sphere, for motion blur. Its centre
 // travels in a straight line from center1 at time 0 to center2 at time 1, and a ray meets it
 // where it is at the ray's time(); its bounding box covers the whole motion (the box around the
@@ -17,6 +19,7 @@
 #include "constants.h"
 #include "hittable.h"
 #include "interval.h"
+#include "material.h"
 #include "onb.h"
 #include "ray.h"
 #include "vec3.h"
@@ -57,6 +60,10 @@ class sphere : public hittable {
     // A still sphere.
     sphere(const point3& center, double radius, std::shared_ptr<material> mat)
         : path_(center, vec3(0, 0, 0)), radius_(radius), mat_(std::move(mat)) {}
+    // Book 1's sphere before materials exist (sections 6 to 9), which a main shades with its own
+    // ray_color: grey diffuse (albedo 0.5) when the camera renders it, section 9's image.
+    sphere(const point3& center, double radius)
+        : sphere(center, radius, std::make_shared<lambertian>(color(0.5, 0.5, 0.5))) {}
     // A moving sphere: at center1 at time 0, at center2 at time 1.
     sphere(const point3& center1, const point3& center2, double radius, std::shared_ptr<material> mat)
         : path_(center1, center2 - center1), radius_(radius), mat_(std::move(mat)) {}

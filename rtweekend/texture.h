@@ -24,6 +24,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <typeinfo>
 
 namespace rt {
@@ -69,18 +70,26 @@ class checker_texture : public texture {
 
 class image_texture : public texture {
   public:
-    // Throws scene_error naming the file when it is missing or not an image.
-    explicit image_texture(const char* filename) : image_(filename) {}
+    // A file that is missing or not an image does not throw here: the book's constructor prints
+    // a message and goes on, and a book main builds its whole world before it renders. Rendering
+    // a world that holds this texture then fails with load_error(), one line naming the file
+    // (cam.render prints it and exits with status 1), where the book would render its cyan.
+    explicit image_texture(const char* filename);
 
+    // The pixel's colour; cyan (the book's debugging colour) when the file could not be read.
     color value(double u, double v, const point3& p) const override;
 
     const rtw_image& image() const { return image_; }
+    // Why the file could not be read ("cannot read image texture 'x.jpg': file not found ..."),
+    // or empty when it was.
+    const std::string& load_error() const { return load_error_; }
     // The pixel (i, j) that (u, v) falls in: u and v clamped to [0, 1], v = 1 the top row, the
     // far edges belonging to the last pixel.
     static void pixel_at(double u, double v, int width, int height, int& i, int& j);
 
   private:
     rtw_image image_;
+    std::string load_error_;
 };
 
 class noise_texture : public texture {
@@ -139,7 +148,16 @@ inline void image_texture::pixel_at(double u, double v, int width, int height, i
     if (j >= height) j = height - 1;
 }
 
+inline image_texture::image_texture(const char* filename) {
+    try {
+        image_ = rtw_image(filename);
+    } catch (const scene_error& e) {
+        load_error_ = e.what();
+    }
+}
+
 inline color image_texture::value(double u, double v, const point3& /*p*/) const {
+    if (image_.height() <= 0) return color(0, 1, 1);
     int i, j;
     pixel_at(u, v, image_.width(), image_.height(), i, j);
     const rtw_image::rgb c = image_.linear(i, j);

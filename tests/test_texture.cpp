@@ -50,9 +50,14 @@ class stripes : public texture {
     color value(double u, double v, const point3& p) const override { return color(u, v, std::fabs(p.x()) < 0.5 ? 1 : 0); }
 };
 
-std::string error_of(const char* path) {
+// What an image_texture of `path` reports, and what a render of a sphere wearing it throws.
+std::string error_of(const char* path) { return image_texture(path).load_error(); }
+
+std::string render_error_of(const char* path) {
+    hittable_list world;
+    world.add(std::make_shared<sphere>(point3(0, 0, -2), 1, std::make_shared<lambertian>(std::make_shared<image_texture>(path))));
     try {
-        image_texture t(path);
+        compile_scene(world, point3(0, 0, 0));
     } catch (const scene_error& e) {
         return e.what();
     }
@@ -155,14 +160,26 @@ TEST_CASE("image_texture: a Radiance HDR file stays linear and unclamped") {
     CHECK(int(px[2]) == 137);
 }
 
-TEST_CASE("image_texture: a missing or corrupt file is a scene_error naming it") {
+TEST_CASE("image_texture: a missing or corrupt file is a scene_error naming it, at render time") {
+    // Built without throwing, as the book's constructor goes on; the render refuses the scene.
     const std::string missing = error_of("no_such_texture_file.png");
     CHECK(missing.find("no_such_texture_file.png") != std::string::npos);
     CHECK(missing.find("not found") != std::string::npos);
+    CHECK(render_error_of("no_such_texture_file.png") == missing);
     const std::string corrupt_path = texture_dir + "/corrupt.png";
     const std::string corrupt = error_of(corrupt_path.c_str());
     CHECK(corrupt.find(corrupt_path) != std::string::npos);
+    CHECK(render_error_of(corrupt_path.c_str()) == corrupt);
     CHECK(error_of("") != "");
+    CHECK(render_error_of("") == error_of(""));
+    // A file that was read reports nothing and renders.
+    const std::string good = texture_dir + "/rows_4x2.png";
+    CHECK(error_of(good.c_str()).empty());
+    CHECK(render_error_of(good.c_str()).empty());
+    // Asked directly, the texture without pixels answers the book's cyan everywhere.
+    const image_texture none("no_such_texture_file.png");
+    check_color(none.value(0.3, 0.7, point3(1, 2, 3)), color(0, 1, 1), 0);
+    check_color(none.value(-1, 2, point3()), color(0, 1, 1), 0);
 }
 
 TEST_CASE("perlin: 0 at lattice points, bounded by 1, continuous") {

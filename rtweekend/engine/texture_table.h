@@ -15,6 +15,7 @@
 // value() in double; it may call random_double(), so calls_user_code() is then true).
 // eval computes in double exactly what texture::value computes, so both give the same colour.
 
+#include "../scene_error.h"
 #include "../texture.h"
 #include "vec3f.h"
 
@@ -72,12 +73,14 @@ inline uint32_t texture_table::add(const texture& tex) {
         e.even = add(*c.even()); // children first: a checker's entry follows its children's
         e.odd = add(*c.odd());
     } else if (type == typeid(image_texture)) {
-        const rtw_image& img = static_cast<const image_texture&>(tex).image();
+        const auto& image = static_cast<const image_texture&>(tex);
+        if (!image.load_error().empty()) throw scene_error(image.load_error());
+        const rtw_image& img = image.image();
         e.kind = texture_kind::image;
         e.pixels = img.linear_pixels();
         e.width = img.width();
         e.height = img.height();
-        if (!e.pixels) { // a default rtw_image: no pixels. image_texture always has some; be safe
+        if (!e.pixels) { // a default rtw_image: no pixels. A loaded image_texture always has some; be safe
             e.kind = texture_kind::constant;
             e.value = {1, 0, 1};
         }

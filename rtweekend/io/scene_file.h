@@ -488,13 +488,10 @@ inline void scene_parser::texture_line(const scene_line& line) {
         tex = std::make_shared<checker_texture>(scale, even, odd);
     } else if (kind == "image") {
         line.expect_count(4, "texture name image file");
-        try {
-            auto image = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
-            scene_.files.push_back(image->image().path()); // where it was found ($RTW_IMAGES, images/...)
-            tex = std::move(image);
-        } catch (const scene_error& e) {
-            line.fail(e.what());
-        }
+        auto image = std::make_shared<image_texture>(resolve(line.word(3)).c_str());
+        if (!image->load_error().empty()) line.fail(image->load_error());
+        scene_.files.push_back(image->image().path()); // where it was found ($RTW_IMAGES, images/...)
+        tex = std::move(image);
         i = 4;
     } else if (kind == "noise") {
         line.expect_count(4, "texture name noise scale");
