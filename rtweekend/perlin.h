@@ -37,7 +37,7 @@ class perlin {
     int perm_x_[point_count], perm_y_[point_count], perm_z_[point_count];
 
     static void generate_perm(int* p);
-    static double interpolate(const vec3 c[2][2][2], double u, double v, double w);
+    static int lattice_index(double f);
 };
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
@@ -62,32 +62,35 @@ inline void perlin::generate_perm(int* p) {
 
 inline double perlin::noise(const point3& p) const {
     const double fx = std::floor(p.x()), fy = std::floor(p.y()), fz = std::floor(p.z());
-    // The lattice cell's index modulo 256 (only its low 8 bits are used), taken in double: the
-    // book's int(fx) is undefined beyond an int, which a point far from the origin (or a large
-    // noise scale) reaches. The same indices as the book's wherever an int holds fx.
-    auto wrap = [](double f) { return std::isfinite(f) ? int(f - 256.0 * std::floor(f / 256.0)) : 0; };
-    const int i = wrap(fx), j = wrap(fy), k = wrap(fz);
-    vec3 c[2][2][2];
-    for (int di = 0; di < 2; ++di)
-        for (int dj = 0; dj < 2; ++dj)
-            for (int dk = 0; dk < 2; ++dk)
-                c[di][dj][dk] = randvec_[perm_x_[(i + di) & 255] ^ perm_y_[(j + dj) & 255] ^ perm_z_[(k + dk) & 255]];
-    return interpolate(c, p.x() - fx, p.y() - fy, p.z() - fz);
+    const int i = lattice_index(fx), j = lattice_index(fy), k = lattice_index(fz);
+    const double u = p.x() - fx, v = p.y() - fy, w = p.z() - fz;
+    // The gradient at corner (i + di, j + dj, k + dk) dotted with the offset from that corner.
+    const int x0 = perm_x_[i], x1 = perm_x_[(i + 1) & 255], y0 = perm_y_[j], y1 = perm_y_[(j + 1) & 255],
+              z0 = perm_z_[k], z1 = perm_z_[(k + 1) & 255];
+    auto corner = [&](int px, int py, int pz, double du, double dv, double dw) {
+        const vec3& g = randvec_[px ^ py ^ pz];
+        return g.x() * du + g.y() * dv + g.z() * dw;
+    };
+    const double d000 = corner(x0, y0, z0, u, v, w), d001 = corner(x0, y0, z1, u, v, w - 1);
+    const double d010 = corner(x0, y1, z0, u, v - 1, w), d011 = corner(x0, y1, z1, u, v - 1, w - 1);
+    const double d100 = corner(x1, y0, z0, u - 1, v, w), d101 = corner(x1, y0, z1, u - 1, v, w - 1);
+    const double d110 = corner(x1, y1, z0, u - 1, v - 1, w), d111 = corner(x1, y1, z1, u - 1, v - 1, w - 1);
+    // Blended by the smoothstep (Hermite cubic 3t^2 - 2t^3) of the position in the cell, so the
+    // noise's slope is continuous: the book's sum of the eight corners, each weighted by the
+    // product of its three axis weights (t or 1 - t), taken as a lerp along z, then y, then x.
+    const double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
+    auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
+    const double at_x0 = lerp(lerp(d000, d001, ww), lerp(d010, d011, ww), vv);
+    const double at_x1 = lerp(lerp(d100, d101, ww), lerp(d110, d111, ww), vv);
+    return lerp(at_x0, at_x1, uu);
 }
 
-// Each corner's gradient dotted with the offset from that corner, weighted by the smoothstep
-// (Hermite cubic 3t^2 - 2t^3) of the position in the cell, so the noise's slope is continuous.
-inline double perlin::interpolate(const vec3 c[2][2][2], double u, double v, double w) {
-    const double uu = u * u * (3 - 2 * u), vv = v * v * (3 - 2 * v), ww = w * w * (3 - 2 * w);
-    double sum = 0;
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-            for (int k = 0; k < 2; ++k) {
-                const vec3 offset(u - i, v - j, w - k);
-                sum += (i * uu + (1 - i) * (1 - uu)) * (j * vv + (1 - j) * (1 - vv)) * (k * ww + (1 - k) * (1 - ww)) *
-                       dot(c[i][j][k], offset);
-            }
-    return sum;
+// The lattice cell's index modulo 256 (only its low 8 bits are used). The book's int(f) & 255
+// wherever an int holds f; beyond that (a point far from the origin, or a large noise scale),
+// where the book's conversion is undefined, the same remainder taken in double.
+inline int perlin::lattice_index(double f) {
+    if (std::fabs(f) < 2147483648.0) return int(f) & 255;
+    return std::isfinite(f) ? int(f - 256.0 * std::floor(f / 256.0)) : 0;
 }
 
 inline double perlin::turb(const point3& p, int depth) const {

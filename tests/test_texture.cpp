@@ -307,6 +307,38 @@ TEST_CASE("texture_table: eval agrees with texture::value at random points, one 
     CHECK(means.average(means.add(two)) == doctest::Approx(0.3));
 }
 
+TEST_CASE("texture_table: reads_uv only for images, user textures and checkers holding one") {
+    pcg32 g(12);
+    detail::scoped_sample_rng guard(g);
+    auto image = std::make_shared<image_texture>((texture_dir + "/rows_4x2.png").c_str());
+    auto noise = std::make_shared<noise_texture>(3);
+    auto user = std::make_shared<stripes>();
+    auto plain = std::make_shared<solid_color>(color(0.2, 0.4, 0.6));
+    checker_texture spatial(0.5, color(1, 0, 0), color(0, 1, 0));
+    checker_texture marble_or_plain(0.5, noise, plain);
+    checker_texture with_image(0.5, plain, image);
+    checker_texture nested(0.5, std::make_shared<checker_texture>(0.25, noise, user), plain);
+    texture_table table;
+    CHECK_FALSE(table.reads_uv(table.add(*plain)));
+    CHECK_FALSE(table.reads_uv(table.add(*noise)));
+    CHECK_FALSE(table.reads_uv(table.add(spatial)));
+    CHECK_FALSE(table.reads_uv(table.add(marble_or_plain)));
+    CHECK(table.reads_uv(table.add(*image)));
+    CHECK(table.reads_uv(table.add(*user)));
+    CHECK(table.reads_uv(table.add(with_image)));
+    CHECK(table.reads_uv(table.add(nested)));
+    // A texture that ignores (u, v) gives the same colour whatever they are (what skipping them assumes).
+    const uint32_t m = table.add(marble_or_plain);
+    pcg32 r(4);
+    for (int k = 0; k < 200; ++k) {
+        const point3 p(8 * r.next_double() - 4, 8 * r.next_double() - 4, 8 * r.next_double() - 4);
+        const vec3f a = table.eval(m, 0, 0, p), b = table.eval(m, r.next_float(), r.next_float(), p);
+        CHECK(a.x == b.x);
+        CHECK(a.y == b.y);
+        CHECK(a.z == b.z);
+    }
+}
+
 TEST_CASE("surface_coordinates: spheres by the book's get_sphere_uv, quads by their edges, meshes by their uv") {
     hittable_list world;
     auto grey = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));

@@ -37,8 +37,8 @@ inline void surface_coordinates(const compiled_scene& scene, const surface_hit& 
 
 namespace detail {
 inline vec3f texture_at(const compiled_scene& scene, uint32_t texture, const surface_hit& hit) {
-    double u, v;
-    surface_coordinates(scene, hit, u, v);
+    double u = 0, v = 0;
+    if (scene.textures.reads_uv(texture)) surface_coordinates(scene, hit, u, v);
     return scene.textures.eval(texture, float(u), float(v), scene.origin + hit.p.to_double());
 }
 } // namespace detail

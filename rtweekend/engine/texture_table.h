@@ -38,6 +38,8 @@ struct compiled_texture {
     std::shared_ptr<const perlin> noise; // noise
     double scale = 1;                    // noise
     const texture* user = nullptr;       // user; owned by the world, like the materials
+    bool reads_uv = false;               // eval looks at (u, v): an image or a user texture, or a
+                                         // checker with one among its children
 };
 
 class texture_table {
@@ -47,6 +49,9 @@ class texture_table {
     uint32_t add(const texture& tex);
     vec3f eval(uint32_t index, float u, float v, const vec3& p_world) const;
     float average(uint32_t index) const;
+    // Whether eval(index, ...) depends on (u, v): where it does not (constants, 3-D checkers,
+    // noise), the renderer skips computing them (a sphere's take an acos and an atan2).
+    bool reads_uv(uint32_t index) const { return entries[index].reads_uv; }
 
     bool empty() const { return entries.empty(); }
     bool calls_user_code() const { return has_user_; }
@@ -72,11 +77,13 @@ inline uint32_t texture_table::add(const texture& tex) {
         e.inv_scale = c.inv_scale();
         e.even = add(*c.even()); // children first: a checker's entry follows its children's
         e.odd = add(*c.odd());
+        e.reads_uv = entries[e.even].reads_uv || entries[e.odd].reads_uv;
     } else if (type == typeid(image_texture)) {
         const auto& image = static_cast<const image_texture&>(tex);
         if (!image.load_error().empty()) throw scene_error(image.load_error());
         const rtw_image& img = image.image();
         e.kind = texture_kind::image;
+        e.reads_uv = true;
         e.pixels = img.linear_pixels();
         e.width = img.width();
         e.height = img.height();
@@ -91,6 +98,7 @@ inline uint32_t texture_table::add(const texture& tex) {
         e.scale = n.scale();
     } else {
         e.kind = texture_kind::user;
+        e.reads_uv = true;
         e.user = &tex;
         has_user_ = true;
     }
