@@ -97,19 +97,26 @@ inline vec3 random_in_unit_sphere() {
     }
 }
 
-// A uniformly distributed point in the unit disk (z = 0), by polar mapping of two uniforms.
+// A uniformly distributed point in the unit disk (z = 0), by rejection from the enclosing square
+// as the book's is: the same draws in the same order (y, then x, the order g++ evaluates the
+// book's vec3(random_double(-1, 1), random_double(-1, 1), 0) in), so a main that calls it outside
+// a render gets the book's numbers.
 inline vec3 random_in_unit_disk() {
-    double r = std::sqrt(random_double());
-    double phi = 2 * pi * random_double();
-    return vec3(r * std::cos(phi), r * std::sin(phi), 0);
+    while (true) {
+        double y = random_double(-1, 1), x = random_double(-1, 1);
+        if (x * x + y * y < 1) return vec3(x, y, 0);
+    }
 }
 
-// A uniformly distributed direction on the unit sphere (Archimedes: z is uniform on [-1, 1]).
+// A uniformly distributed direction on the unit sphere: a point of the cube accepted inside the
+// ball and projected onto the sphere, as the book's is (the same draws; a point too near the
+// centre to normalise, below 1e-160 in squared length, is drawn again).
 inline vec3 random_unit_vector() {
-    double z = 1 - 2 * random_double();
-    double phi = 2 * pi * random_double();
-    double s = std::sqrt(std::fmax(0.0, 1 - z * z));
-    return vec3(s * std::cos(phi), s * std::sin(phi), z);
+    while (true) {
+        vec3 p = vec3::random(-1, 1);
+        double length_squared = p.length_squared();
+        if (1e-160 < length_squared && length_squared <= 1) return p / std::sqrt(length_squared);
+    }
 }
 
 // A uniformly distributed direction on the hemisphere around `normal`.
