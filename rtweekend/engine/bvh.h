@@ -23,6 +23,7 @@
 // A scene of a few primitives gets no nodes at all: its root is a single leaf.
 
 #include "../scene_error.h"
+#include "force_inline.h"
 #include "leaf_query.h"
 #include "vec3f.h"
 
@@ -727,6 +728,7 @@ struct bvh_ray {
                                                       _mm_cmple_ps(_mm_and_ps(oi, abs_mask), limit)));
         usable = (finite & 7) == 7;
         const int negative = _mm_movemask_ps(d);
+        RTWEEKEND_UNROLL(3)
         for (int a = 0; a < 3; ++a) {
             const int n = (negative >> a) & 1;
             near_plane[a] = a + 3 * n;
@@ -952,6 +954,7 @@ inline bvh_packet::bvh_packet(const ray_lanes& rays, const unsigned dir_signs[3]
     const floatv origin[3] = {rays.ox, rays.oy, rays.oz}, dir[3] = {rays.dx, rays.dy, rays.dz};
     const floatv tiny(1e-20f), largest(std::numeric_limits<float>::max());
     maskv finite = first_lanes(unsigned(count));
+    RTWEEKEND_UNROLL(3)
     for (int a = 0; a < 3; ++a) {
         // A component below 1e-20 in size becomes 1e-20 of its sign (bvh_ray says why).
         const maskv is_tiny = (dir[a] < tiny) & (dir[a] > -tiny);
@@ -1004,6 +1007,7 @@ void traverse_packet(const wide_bvh& bvh, const bvh_packet& packet, float* tmax,
                 // lane's near plane on an axis picked by its direction's sign, as bvh_ray picks it
                 // (so an empty slot, low planes +inf and high ones -inf, is entered by no lane).
                 floatv near_t[3], far_t[3];
+                RTWEEKEND_UNROLL(3)
                 for (int a = 0; a < 3; ++a) {
                     const floatv lo = fmsub(floatv(node.bounds[a][c]), packet.inv[a], packet.origin_inv[a]);
                     const floatv hi = fmsub(floatv(node.bounds[a + 3][c]), packet.inv[a], packet.origin_inv[a]);

@@ -6,6 +6,7 @@
 #include "../scene_error.h"
 #include "../vec3.h"
 #include "../whitted_scene.h"
+#include "force_inline.h"
 #include "rng.h"
 #include "sampler.h"
 #include "sampling.h"
@@ -144,6 +145,7 @@ inline void camera_frame::sample_rays(int n, const int* x, const int* y, pixel_s
         // generate(): the pixel's point on the plane of pixel centres, seen from the lens point.
         const floatv sx = floatv::load(px + k) - floatv(0.5f), sy = floatv::load(py + k) - floatv(0.5f);
         floatv to[3];
+        RTWEEKEND_UNROLL(3)
         for (int a = 0; a < 3; ++a) {
             const floatv target = floatv(pixel00[a]) + sx * floatv(pixel_delta_u[a]) + sy * floatv(pixel_delta_v[a]);
             const floatv origin = thin_lens ? lens_u * floatv(defocus_disk_u[a]) + lens_v * floatv(defocus_disk_v[a]) : floatv(0.0f);
@@ -151,6 +153,7 @@ inline void camera_frame::sample_rays(int n, const int* x, const int* y, pixel_s
             to[a] = target - origin;
         }
         const floatv inverse = floatv(1.0f) / sqrt(to[0] * to[0] + to[1] * to[1] + to[2] * to[2]);
+        RTWEEKEND_UNROLL(3)
         for (int a = 0; a < 3; ++a) (to[a] * inverse).store(dir[a] + k);
     }
     alignas(64) float time[lanes] = {};

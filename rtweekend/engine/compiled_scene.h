@@ -180,6 +180,7 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
     __m256 column[blocks][8];
     for (int h = 0; h < blocks; ++h) {
         __m256 m[8];
+        RTWEEKEND_UNROLL(8)
         for (int i = 0; i < 8; ++i) {
             const int k = 8 * h + i;
             m[i] = k < count ? _mm256_loadu_ps(&r[k].origin.x) : _mm256_setzero_ps();
@@ -193,12 +194,14 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
         const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
         const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
         const __m256 u[8] = {u0, u1, u2, u3, u4, u5, u6, u7};
+        RTWEEKEND_UNROLL(4)
         for (int a = 0; a < 4; ++a) {
             column[h][a] = _mm256_permute2f128_ps(u[a], u[a + 4], 0x20);
             column[h][a + 4] = _mm256_permute2f128_ps(u[a], u[a + 4], 0x31);
         }
     }
     // The lanes from count on are +0: their sign bits are clear.
+    RTWEEKEND_UNROLL(8)
     for (int a = 0; a < 8; ++a) {
         float* out = a < 7 ? lane[a] : t_best;
         unsigned signs = 0;
