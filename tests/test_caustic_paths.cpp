@@ -159,7 +159,7 @@ TEST_CASE("light tracing and the camera paths weigh a caustic by the ratio of th
     }
 }
 
-TEST_CASE("an area light seen in a mirror lights a Lambertian patch, wide and zoomed in") {
+TEST_CASE("an area light seen in a mirror lights a Lambertian patch, wide and zoomed in" * doctest::test_suite("heavy")) {
     // The patch (albedo A, half-width 0.3) at y = 0, a mirror facing down at y = h, and a square
     // light of side s and radiance Le at height d, centred at x = X0, facing up: it lights the
     // patch only through the mirror, as its image at height H = 2h - d facing down (centred at
@@ -230,7 +230,7 @@ TEST_CASE("an area light seen in a mirror lights a Lambertian patch, wide and zo
     }
 }
 
-TEST_CASE("caustics seen indirectly: light tracing and the camera paths alone give the same image") {
+TEST_CASE("caustics seen indirectly: light tracing and the camera paths alone give the same image" * doctest::test_suite("heavy")) {
     // A room lit only through a mirror: the light faces up into a mirror ceiling, so that every
     // path that reaches it ends ... -> mirror -> light, and the whole image is light that light
     // tracing also finds: seen directly (camera -> wall -> mirror -> light), past an inner

@@ -90,7 +90,7 @@ TEST_CASE("fuzz: a glass sphere between two mirrors at depth 60 takes bounded wo
     CHECK(render_one_thread(scene, small).stats.rays == 1 + 100);
 }
 
-TEST_CASE("fuzz: the Whitted bounds leave the test scenes' images unchanged, bit for bit") {
+TEST_CASE("fuzz: the Whitted bounds leave the test scenes' images unchanged, bit for bit" * doctest::test_suite("heavy")) {
     whitted_options unbounded;
     unbounded.min_branch_weight = 0;
     unbounded.max_branch_rays = std::numeric_limits<uint32_t>::max();

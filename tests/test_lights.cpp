@@ -313,7 +313,7 @@ TEST_CASE("nee, bsdf and mixture converge to the same sphere room") {
     check_estimators_agree(make_sphere_room(), 16, 10, test::sanitized_share(64), false);
 }
 
-TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it agree in a bright furnace") {
+TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it agree in a bright furnace" * doctest::test_suite("heavy")) {
     // Albedo 0.9 makes paths long, so roulette decides most of them; bsdf (no roulette, no light
     // sampling) is the reference, on the same closed room as above.
     const closed_room room = make_closed_room(0.9);

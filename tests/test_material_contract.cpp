@@ -182,7 +182,7 @@ TEST_CASE("material contract: the fuzzy metal has a density down to a fuzz of 1e
     CHECK(fuzzy_mirror_density(f.dir(std::cos(15 * pi_d / 180), 1.0), m, 0.3f) > 0);
 }
 
-TEST_CASE("material contract: chi-square of sample() against pdf() for every lobe with a density") {
+TEST_CASE("material contract: chi-square of sample() against pdf() for every lobe with a density" * doctest::test_suite("heavy")) {
     // Directions are binned by mu = cos(angle to an axis) and the azimuth about it: the normal for
     // diffuse lobes, the mirror direction for glossy ones (where the lobe is). The expected count
     // of a cell is N times pdf() integrated over it (midpoint rule, 12 x 12 points per cell, d omega

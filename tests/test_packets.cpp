@@ -321,7 +321,7 @@ class nothing_here : public hittable {
 
 } // namespace
 
-TEST_CASE("packets: a batch's paths side by side make the image of its paths one by one, bit for bit") {
+TEST_CASE("packets: a batch's paths side by side make the image of its paths one by one, bit for bit" * doctest::test_suite("heavy")) {
     // With Sobol numbers the camera's time is a dimension of its own, which the scene with user
     // code draws and the other does not; nothing depends on it here. Light tracing of caustics
     // is off (it needs a scene without user code).

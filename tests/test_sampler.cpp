@@ -396,7 +396,7 @@ TEST_CASE("every sampler: identical images at 1, 2 and 3 threads, adaptive sampl
         }
 }
 
-TEST_CASE("every sampler is unbiased on the cover scene, and Sobol and stratified beat independent at equal spp") {
+TEST_CASE("every sampler is unbiased on the cover scene, and Sobol and stratified beat independent at equal spp" * doctest::test_suite("heavy")) {
     // The book's cover at 400x225, 4 samples per pixel, against the book's own 6144-spp render.
     // The image mean is an integral over the film: a sample is at most ~1.1 (the sky), so its
     // standard deviation is below 0.6 and the mean of 360,000 samples is within 4.5 standard
