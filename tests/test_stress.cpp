@@ -526,7 +526,7 @@ TEST_CASE("stress: the book's hollow glass sphere (inner ior 1/1.5) and off-cent
     // ior 1/1.5. Inside the bubble a ray can meet its wall near grazing (Schlick near 1) many
     // times, so a few paths may reach max_depth: each pixel is k B / spp with a common k (see
     // check_glass_furnace), at least 90% of the pixels are exactly B, and nothing is NaN.
-    // The older editions' bubble used a negative radius, which this renderer rejects.
+    // The older editions' bubble, with a negative radius: the next test case.
     for (double s : {0.0, 1e4}) {
         CAPTURE(s);
         const point3 C = s * shift_dir;
@@ -548,10 +548,37 @@ TEST_CASE("stress: the book's hollow glass sphere (inner ior 1/1.5) and off-cent
             CHECK(check_glass_furnace(r.img, *cam.background, cam.samples_per_pixel) >= 360);
         }
     }
-    hittable_list old_style;
-    old_style.add(std::make_shared<sphere>(point3(-1, 0, -1), -0.4, std::make_shared<dielectric>(1.5)));
-    camera cam = glass_camera(point3(-1, 0, -1), 3);
-    CHECK_THROWS_AS((void)render(cam, old_style), scene_error);
+}
+
+TEST_CASE("stress: the older books' hollow glass (a negative radius) is the 2023 edition's bubble") {
+    // v3's bubble: the radius-0.5 sphere of ior 1.5 around a radius -0.4 sphere of ior 1.5,
+    // whose normals point inwards, so that a ray from outside meets its back face and bends
+    // with ratio 1.5 going in. The 2023 edition's bubble, a radius-0.4 sphere of ior 1 / 1.5
+    // met on its front face, bends with 1 / (1 / 1.5): the same ratio at every crossing, the
+    // same Schlick reflectance. So the two scenes are the same scene, and the images must be
+    // the same bit for bit (1 / 1.5 rounds to one float either way: 0x3f2aaaab).
+    const point3 C(-1, 0, -1);
+    auto bubble = [&](double inner_radius, double inner_ior) {
+        hittable_list world;
+        world.add(std::make_shared<sphere>(C, 0.5, std::make_shared<dielectric>(1.5)));
+        world.add(std::make_shared<sphere>(C, inner_radius, std::make_shared<dielectric>(inner_ior)));
+        world.add(std::make_shared<sphere>(point3(0, -100.5, -1), 100, lam(0.8, 0.8, 0.0)));
+        return world;
+    };
+    camera cam = glass_camera(C, 3);
+    render_result v3 = test::render_checked(cam, bubble(-0.4, 1.5));
+    render_result v4 = test::render_checked(cam, bubble(0.4, 1.0 / 1.5));
+    CHECK(test::same_bits(v3.img, v4.img));
+    // And the book's own hit test: from outside, a negative sphere's back face.
+    sphere hollow(point3(0, 0, 0), -0.4, std::make_shared<dielectric>(1.5));
+    hit_record rec;
+    REQUIRE(hollow.hit(ray(point3(0, 0, 2), vec3(0, 0, -1)), interval(0.001, infinity), rec));
+    CHECK(rec.t == doctest::Approx(1.6));
+    CHECK_FALSE(rec.front_face);
+    CHECK(rec.normal.z() == doctest::Approx(1.0)); // against the ray, as set_face_normal makes it
+    const aabb box = hollow.bounding_box();        // as big as the sphere of radius 0.4
+    CHECK(box.x.min == doctest::Approx(-0.4));
+    CHECK(box.x.max == doctest::Approx(0.4));
 }
 
 TEST_CASE("stress: touching glass spheres (and glass touching a diffuse ground) render finite") {
@@ -719,11 +746,36 @@ TEST_CASE("bad input: non-finite sphere centres") {
     check_world_rejected(outer, "nested NaN centre");
 }
 
-TEST_CASE("bad input: zero, negative and non-finite radii") {
-    for (double r : {0.0, -0.0, -1e-300, -0.4, -inf_d, inf_d, nan_d}) {
+TEST_CASE("bad input: zero and non-finite radii") {
+    for (double r : {0.0, -0.0, -inf_d, inf_d, nan_d}) {
         CAPTURE(r);
         check_world_rejected(one(point3(0, 0, -3), r, lam(0.5, 0.5, 0.5)), "radius");
     }
+}
+
+TEST_CASE("bad input: an inside-out sphere whose material cannot be turned round is refused") {
+    // Absorbing glass would absorb outside the sphere, a one-sided light would shine inwards,
+    // and a program's own material reads front_face: each gets one line naming the problem.
+    struct own_material : material {
+        bool scatter(const ray&, const hit_record&, color&, ray&) const override { return false; }
+    };
+    auto absorbing = std::make_shared<dielectric>(1.5, color(0.5, 0.5, 0.5));
+    auto one_sided = std::make_shared<diffuse_light>(color(4, 4, 4)); // book 3's: the front face only
+    for (std::shared_ptr<material> m : std::initializer_list<std::shared_ptr<material>>{
+             absorbing, one_sided, std::make_shared<own_material>()}) {
+        hittable_list world = one(point3(0, 0, -3), -1, m);
+        try {
+            (void)render(valid_camera(), world);
+            FAIL("an inside-out sphere with this material rendered");
+        } catch (const scene_error& e) {
+            CHECK(std::string(e.what()).find("negative radius") != std::string::npos);
+        }
+    }
+    // Materials with no faces to tell apart render, as at a positive radius.
+    for (std::shared_ptr<material> m : std::initializer_list<std::shared_ptr<material>>{
+             lam(0.5, 0.5, 0.5), std::make_shared<metal>(color(0.5, 0.5, 0.5), 0.2),
+             std::make_shared<diffuse_light>(color(4, 4, 4), true), std::make_shared<dielectric>(1.5, color(0, 0, 0))})
+        test::render_checked(valid_camera(), one(point3(0, 0, -3), -1, m));
 }
 
 TEST_CASE("bad input: negative and non-finite albedo, for lambertian and metal") {

@@ -480,24 +480,59 @@ class scene_compiler {
         return index;
     }
 
+    // The material of a sphere with a negative radius (the books' v3 hollow glass), whose
+    // outward normal (p - c) / r points inwards: a ray from outside meets its back face. Only
+    // the materials that tell the faces apart change: a dielectric of index n seen inside out
+    // is one of index 1 / n seen the right way round (the ratio at each crossing is the same),
+    // and a two-sided light or any other built-in material is the same either way. What cannot
+    // be turned round is refused: absorbing glass (its inside would be the outside), a
+    // one-sided light (it would shine inwards) and a user's material (it reads front_face).
+    uint32_t inside_out_material_index(const material* m) {
+        if (root_ != this) return root_->inside_out_material_index(m);
+        auto found = inside_out_index_.find(m);
+        if (found != inside_out_index_.end()) return found->second;
+        const uint32_t right_way_round = material_index(m);
+        compiled_material d = out_.materials[right_way_round];
+        uint32_t index = right_way_round;
+        const char* refusal = nullptr;
+        if (d.kind == material_kind::dielectric || d.kind == material_kind::fresnel_dielectric) {
+            if (d.absorbs_inside()) refusal = "absorbing glass";
+            d.refraction_index = 1.0f / d.refraction_index;
+            index = static_cast<uint32_t>(out_.materials.size());
+            out_.materials.push_back(d);
+        } else if (d.kind == material_kind::user && typeid(*m) != typeid(isotropic)) { // a phase function has no faces
+            refusal = "a material of the program's own";
+        } else if (d.emits() && !d.two_sided) {
+            refusal = "a one-sided diffuse_light";
+        }
+        if (refusal)
+            throw scene_error(std::string("a sphere with a negative radius (inside out) cannot have ") + refusal +
+                              ": give it a positive radius");
+        inside_out_index_.emplace(m, index);
+        return index;
+    }
+
     void add_sphere(const sphere& s, const affine_map& xf) {
         if (!finite3(s.center()) || !finite3(s.center(1)))
             throw scene_error("sphere centre must be finite, got " + point_text(s.center()) +
                               (s.is_moving() ? " moving to " + point_text(s.center(1)) : std::string()));
-        if (!(std::isfinite(s.radius()) && s.radius() > 0))
-            throw scene_error("sphere radius must be positive and finite, got " + std::to_string(s.radius()));
+        if (!(std::isfinite(s.radius()) && s.radius() != 0))
+            throw scene_error("sphere radius must be finite and not zero, got " + std::to_string(s.radius()));
         if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
-        const double radius = s.radius() * xf.sphere_scale(); // must_instance saw to it that the map keeps it round
+        // A negative radius is the books' v3 hollow glass: the sphere of radius |r|, inside out.
+        const bool inside_out = s.radius() < 0;
+        const uint32_t material = inside_out ? inside_out_material_index(s.mat().get()) : material_index(s.mat().get());
+        const double radius = std::fabs(s.radius()) * xf.sphere_scale(); // must_instance saw to it that the map keeps it round
         const vec3 c = xf.point(s.center()) - out_.origin, c1 = xf.point(s.center(1)) - out_.origin;
         if (!(fmax_inline(max_abs(c), max_abs(c1)) + radius < max_float_extent))
             throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
                               " is out of single-precision range: its distance from the camera plus its radius must "
                               "be below 1e18");
         if (s.is_moving()) {
-            moving_spheres_.push_back({c, c1, radius, material_index(s.mat().get())});
+            moving_spheres_.push_back({c, c1, radius, material});
             return;
         }
-        spheres_.push_back({c, radius, material_index(s.mat().get())});
+        spheres_.push_back({c, radius, material});
     }
 
     // False when the triangle has zero area in float (it could never be hit).
@@ -694,6 +729,7 @@ class scene_compiler {
 
     compiled_scene& out_;
     std::unordered_map<const material*, uint32_t> index_;
+    std::unordered_map<const material*, uint32_t> inside_out_index_; // inside_out_material_index's
     std::vector<sphere_input> spheres_;
     std::vector<triangle_input> triangles_;
     std::vector<quad_input> quads_;
