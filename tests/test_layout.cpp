@@ -38,7 +38,8 @@ const std::vector<std::vector<std::string>> ladder = {
      "whitted_scene.h", "texture.h", "constant_medium.h", "onb.h", "pdf.h", "quad.h", "transform.h", "bvh.h"},
     // 5. the compiled scene: shape sets and their kernels, the BVH, the compilers
     {"engine/leaf_query.h", "engine/bvh.h", "engine/surface_hit.h", "engine/sphere_set.h", "engine/triangle_set.h",
-     "engine/quad_set.h", "engine/user_shape_set.h", "engine/moving_sphere_set.h", "engine/instance_set.h",
+     "engine/quad_set.h", "engine/user_shape_set.h", "engine/convex_medium.h", "engine/moving_sphere_set.h",
+     "engine/instance_set.h",
      "engine/light_set.h", "engine/compiled_scene.h",
      "engine/material_compiler.h", "engine/scene_compiler.h", "engine/texture_table.h",
      "engine/surface_coordinates.h"},

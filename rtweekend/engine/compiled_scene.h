@@ -84,6 +84,9 @@ class compiled_scene {
     // User-written hittables without a bounding box (the default hittable::bounding_box, or a box
     // that is empty, infinite or beyond float's range), tested after the BVH. Owned by the world.
     std::vector<const hittable*> unbounded_user_shapes;
+    // Shapes the compiler made to stand for user shapes (convex_medium for fog in a box), which
+    // user_shapes names in their place.
+    std::vector<std::shared_ptr<const hittable>> owned_user_shapes;
     bool has_user_materials = false;
 
     // The kind of every shape in the BVH when there is only one kind; empty for a mix (or none).

@@ -18,6 +18,7 @@
 // area can never be hit: a mesh's are left out and counted, a single one is an error.
 
 #include "../bvh.h"
+#include "../constant_medium.h"
 #include "../hittable.h"
 #include "../hittable_list.h"
 #include "../material.h"
@@ -30,6 +31,7 @@
 #include "../triangle.h"
 #include "bvh.h"
 #include "compiled_scene.h"
+#include "convex_medium.h"
 #include "material_compiler.h"
 #include "validate.h"
 #include "vec3f.h"
@@ -149,8 +151,53 @@ class scene_compiler {
             // A user's own hittable (or a transform over one): called through its virtual hit().
             // Under a transform, the whole transform node is the user shape.
             if (!xf.identity) throw scene_error("internal: a user shape under a flattened transform");
+            if (typeid(object) == typeid(constant_medium)) {
+                // Fog in a box: its chord in closed form (convex_medium.h), in the medium's place.
+                if (auto convex = convex_form(static_cast<const constant_medium&>(object))) {
+                    out_.owned_user_shapes.push_back(convex);
+                    add_user_shape(*convex);
+                    return;
+                }
+            }
             add_user_shape(object);
         }
+    }
+
+    // The medium as a convex_medium when its boundary is quads (under lists, book 2's trees and
+    // transforms) that close up a convex solid; null otherwise.
+    static std::shared_ptr<convex_medium> convex_form(const constant_medium& medium) {
+        std::vector<convex_medium::face> faces;
+        if (!medium.boundary() || !collect_faces(*medium.boundary(), affine_map{}, faces)) return nullptr;
+        return convex_medium::make(medium, faces);
+    }
+    static bool collect_faces(const hittable& object, const affine_map& xf, std::vector<convex_medium::face>& faces) {
+        if (faces.size() > convex_medium::max_faces) return false;
+        const std::type_info& type = typeid(object);
+        if (type == typeid(quad)) {
+            const auto& q = static_cast<const quad&>(object);
+            faces.push_back({xf.point(q.corner()), xf.vector(q.edge_u()), xf.vector(q.edge_v())});
+            return true;
+        }
+        if (type == typeid(hittable_list)) {
+            for (const auto& child : static_cast<const hittable_list&>(object).objects)
+                if (!child || !collect_faces(*child, xf, faces)) return false;
+            return true;
+        }
+        if (type == typeid(bvh_node)) {
+            const auto& node = static_cast<const bvh_node&>(object);
+            if (!node.left() || !collect_faces(*node.left(), xf, faces)) return false;
+            return node.right() == node.left() || (node.right() && collect_faces(*node.right(), xf, faces));
+        }
+        if (const hittable* child = transformed_child(object)) {
+            affine_map inner;
+            try {
+                inner = transform_map(object);
+            } catch (const scene_error&) {
+                return false; // a transform the medium's own hit() is left to cope with
+            }
+            return collect_faces(*child, xf.then(inner), faces);
+        }
+        return false;
     }
 
     // Whether every shape under `object` is one the compiler lays out itself (so a transform over
