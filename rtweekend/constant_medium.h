@@ -61,6 +61,17 @@ class constant_medium : public hittable {
     double density() const { return density_; }
     const std::shared_ptr<material>& phase_function() const { return phase_function_; }
 
+    // Fills rec with the scattering point at r.at(t): of the phase function, with no surface
+    // (the normal is arbitrary, the face the front one, no texture coordinates).
+    static void scattering_point(const ray& r, double t, const std::shared_ptr<material>& phase, hit_record& rec) {
+        rec.t = t;
+        rec.p = r.at(t);
+        rec.normal = vec3(1, 0, 0);
+        rec.front_face = true;
+        rec.u = rec.v = 0;
+        rec.mat = phase;
+    }
+
   private:
     std::shared_ptr<hittable> boundary_;
     const sphere* boundary_sphere_ = nullptr; // the boundary, when it is exactly a sphere
@@ -106,12 +117,7 @@ inline bool constant_medium::hit(const ray& r, interval ray_t, hit_record& rec) 
         if (!(from < to)) return false;
         const double distance = -std::log(random_double()) / density_;
         if (!(distance < (to - from) * ray_length)) return false;
-        rec.t = from + distance / ray_length;
-        rec.p = r.at(rec.t);
-        rec.normal = vec3(1, 0, 0); // arbitrary: a point in a volume has no surface
-        rec.front_face = true;
-        rec.u = rec.v = 0;
-        rec.mat = phase_function_;
+        scattering_point(r, from + distance / ray_length, phase_function_, rec);
         return true;
     }
     double distance_left = -1; // the free-flight distance still to go inside; drawn at first need
@@ -125,12 +131,7 @@ inline bool constant_medium::hit(const ray& r, interval ray_t, hit_record& rec) 
             if (distance_left < 0) distance_left = -std::log(random_double()) / density_;
             const double inside = (to - from) * ray_length;
             if (distance_left < inside) {
-                rec.t = from + distance_left / ray_length;
-                rec.p = r.at(rec.t);
-                rec.normal = vec3(1, 0, 0); // arbitrary: a point in a volume has no surface
-                rec.front_face = true;
-                rec.u = rec.v = 0;
-                rec.mat = phase_function_;
+                scattering_point(r, from + distance_left / ray_length, phase_function_, rec);
                 return true;
             }
             distance_left -= inside;

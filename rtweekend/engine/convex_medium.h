@@ -149,12 +149,7 @@ inline bool convex_medium::hit(const ray& r, interval ray_t, hit_record& rec) co
     if (!(from < to)) return false;
     const double distance = -std::log(random_double()) / density_;
     if (!(distance < (to - from) * ray_length)) return false;
-    rec.t = from + distance / ray_length;
-    rec.p = r.at(rec.t);
-    rec.normal = vec3(1, 0, 0); // arbitrary: a point in a volume has no surface
-    rec.front_face = true;
-    rec.u = rec.v = 0;
-    rec.mat = phase_function_;
+    constant_medium::scattering_point(r, from + distance / ray_length, phase_function_, rec);
     return true;
 }
 
