@@ -6,7 +6,7 @@
 // double); (b) the pdf a sample reports is the pdf function's at its point; (c) the pdf function
 // integrates to 1 over the directions that meet the light (Monte Carlo over a cap of uniform
 // directions, with the ray-shape intersections written here); (d) the rectangle's solid angle
-// against closed forms; (e) the alias table's probabilities, exactly by enumerating every float
+// against closed forms, and its angles' arctangent against the double one; (e) the alias table's probabilities, exactly by enumerating every float
 // uniform and by chi-square; (f) the power heuristic's edge cases. Everything is seeded.
 
 #include <rtweekend/engine/alias_table.h>
@@ -582,6 +582,35 @@ TEST_CASE("light sampling: the rectangle's solid angle against closed forms") {
         const double expected = closed(-0.5, -0.25, 1, 0.5, h);
         CHECK(quad_solid_angle(vec3f(0, 0, float(h)), Q, u, v) == doctest::Approx(expected).epsilon(1e-5));
     }
+}
+
+TEST_CASE("light sampling: the rectangle's angles, atan(y / x) without a call, within 3 ulps of the double value") {
+    // Ratios from 1e-8 to 1e8 of either sign, uniform in their logarithm, and every ratio near
+    // the range reduction's seams at tan(pi / 8) and tan(3 pi / 8); against std::atan2 in double.
+    pcg32 g(77);
+    double worst_ulps = 0;
+    auto check = [&](float y, float x) {
+        const double exact = std::atan2(double(y), double(x));
+        const float got = detail::atan_of_ratio(y, x);
+        const float magnitude = std::fabs(float(exact));
+        const double ulp = double(std::nextafter(magnitude, 4.0f) - magnitude);
+        worst_ulps = std::fmax(worst_ulps, std::fabs(double(got) - exact) / ulp);
+        REQUIRE(std::signbit(got) == std::signbit(y));
+    };
+    for (int i = 0; i < 200000; ++i) {
+        const float x = std::exp(g.next_float() * 20 - 10);
+        const float ratio = std::exp(g.next_float() * 36.8f - 18.4f);
+        check((i & 1 ? 1.0f : -1.0f) * ratio * x, x);
+    }
+    for (float seam : {0.41421356f, 2.4142135f})
+        for (int k = -2000; k <= 2000; ++k) check(seam * (1 + float(k) * 1e-7f), 1.0f);
+    check(0.0f, 1.0f);
+    check(-0.0f, 1.0f);
+    check(1.0f, 0.0f); // x -> 0+: pi / 2
+    CAPTURE(worst_ulps);
+    CHECK(worst_ulps <= 3.0);
+    CHECK(detail::atan_of_ratio(1.0f, 1.0f) == doctest::Approx(0.7853981633974483).epsilon(2e-7));
+    CHECK(detail::atan_of_ratio(-1e30f, 1.0f) == doctest::Approx(-1.5707963267948966).epsilon(2e-7));
 }
 
 TEST_CASE("light sampling: area_to_solid_angle by hand") {

@@ -193,6 +193,22 @@ inline bool well_conditioned(const spherical_rectangle& r, float delta_abs_sum) 
            delta_abs_sum <= k * r.solid_angle;
 }
 
+// atan(y / x) for x > 0, to within 3 float ulps (2.1e-7 relative; std::atan2 gives 1.2e-7),
+// without a call: the make-up of Cephes' atanf (Moshier, "Methods and Programs for Mathematical
+// Functions", 1989), whose range reduction to |t| <= tan(pi / 8) (t = y / x, or (y - x) / (y + x)
+// plus pi / 4, or -x / y plus pi / 2) and degree-9 odd polynomial are used here with one division
+// and no branches. The four angles of a spherical rectangle then cost less than one call did.
+inline float atan_of_ratio(float y, float x) {
+    const float ay = std::fabs(y);
+    const bool beyond_3pi_8 = ay > 2.414213562373095f * x, beyond_pi_8 = ay > 0.4142135623730950f * x;
+    const float num = beyond_3pi_8 ? -x : beyond_pi_8 ? ay - x : ay;
+    const float den = beyond_3pi_8 ? ay : beyond_pi_8 ? ay + x : x;
+    const float base = beyond_3pi_8 ? 1.570796326794897f : beyond_pi_8 ? 0.7853981633974483f : 0.0f;
+    const float t = num / den, z = t * t;
+    const float odd = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) * z;
+    return std::copysign(base + (odd * t + t), y);
+}
+
 // The set-up of the paper's algorithm 1. The interior angle of the spherical rectangle at the
 // corner (x, y, z0) is gamma = atan2(|z0| |corner|, +-x y): a closed form of the angle between the
 // normals of the planes through p and the two edges meeting there. Writing gamma_i = pi/2 - delta_i
@@ -235,10 +251,10 @@ inline spherical_rectangle make_spherical_rectangle(const vec3f& p, const vec3f&
     const float c00 = sqrt_f(x0 * x0 + y0 * y0 + z2), c10 = sqrt_f(x1 * x1 + y0 * y0 + z2);
     const float c11 = sqrt_f(x1 * x1 + y1 * y1 + z2), c01 = sqrt_f(x0 * x0 + y1 * y1 + z2);
     // The corners in the order of the paper's angles g0..g3: (x1, y0), (x1, y1), (x0, y1), (x0, y0).
-    const float delta0 = std::atan2(x1 * y0, az * c10);
-    const float delta1 = std::atan2(-x1 * y1, az * c11);
-    const float delta2 = std::atan2(x0 * y1, az * c01);
-    const float delta3 = std::atan2(-x0 * y0, az * c00);
+    const float delta0 = atan_of_ratio(x1 * y0, az * c10);
+    const float delta1 = atan_of_ratio(-x1 * y1, az * c11);
+    const float delta2 = atan_of_ratio(x0 * y1, az * c01);
+    const float delta3 = atan_of_ratio(-x0 * y0, az * c00);
     r.delta01 = delta0 + delta1;
     r.delta23 = delta2 + delta3;
     r.b0 = -y0 / sqrt_f(y0 * y0 + z2);
