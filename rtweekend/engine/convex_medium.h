@@ -58,9 +58,10 @@ class convex_medium : public hittable {
     };
     std::vector<plane> planes_;
     double density_ = 0;
-    // The medium's phase function, held without a reference count (the user's medium, which the
-    // world holds for the render, owns it): copying a counted pointer into every hit record
-    // would make the render's threads contend for one counter.
+    // The medium's phase function: owned once here (phase_owner_), and handed to the hit records
+    // through a pointer without a reference count, since copying a counted pointer into every
+    // record would make the render's threads contend for one counter.
+    std::shared_ptr<material> phase_owner_;
     std::shared_ptr<material> phase_function_;
     aabb box_;
 };
@@ -122,7 +123,8 @@ inline std::shared_ptr<convex_medium> convex_medium::make(const constant_medium&
         }
     }
     result->density_ = medium.density();
-    result->phase_function_ = std::shared_ptr<material>(std::shared_ptr<material>(), medium.phase_function().get());
+    result->phase_owner_ = medium.phase_function();
+    result->phase_function_ = std::shared_ptr<material>(std::shared_ptr<material>(), result->phase_owner_.get());
     result->box_ = medium.bounding_box();
     return result;
 }
