@@ -11,10 +11,12 @@
 // settings over as render_settings (engine/render_settings.h), and render() runs the path tracer
 // (engine/path_tracer.h) with them.
 
+#include "constants.h"
 #include "engine/camera_frame.h"
 #include "engine/environment.h"
 #include "engine/path_tracer.h"
 #include "engine/render_settings.h"
+#include "engine/rng.h"
 #include "engine/scheduler.h"
 #include "engine/vec3f.h"
 #include "hittable.h"
@@ -40,6 +42,33 @@ namespace rt {
 
 class camera {
   public:
+    camera() = default;
+
+    // The older books' (v3) cameras, for their mains, which run their own pixel loop and ask
+    // get_ray(s, t) for each sample (and may call render() as well):
+    //   camera(vfov, aspect_ratio)                            looking down -z from the origin
+    //   camera(lookfrom, lookat, vup, vfov, aspect_ratio)
+    //   camera(lookfrom, lookat, vup, vfov, aspect_ratio, aperture, focus_dist[, time0, time1])
+    // They set the settings above (the lens's diameter `aperture` as defocus_angle); without a
+    // focus distance the viewport is at distance 1, those books' focal length.
+    camera(double vfov_degrees, double aspect)
+        : camera(point3(0, 0, 0), point3(0, 0, -1), vec3(0, 1, 0), vfov_degrees, aspect, 0, 1) {}
+    camera(const point3& from, const point3& at, const vec3& up, double vfov_degrees, double aspect)
+        : camera(from, at, up, vfov_degrees, aspect, 0, 1) {}
+    camera(const point3& from, const point3& at, const vec3& up, double vfov_degrees, double aspect, double aperture,
+           double focus_distance, double time0 = 0, double time1 = 0)
+        : aspect_ratio(aspect), vfov(vfov_degrees), lookfrom(from), lookat(at), vup(up),
+          defocus_angle(2 * std::atan(aperture / 2 / focus_distance) * 180 / pi), focus_dist(focus_distance),
+          older_books_camera_(true), lens_radius_(aperture / 2), time0_(time0), time1_(time1) {}
+
+    // The older books' ray for the point (s, t) of the viewport, s across from its left edge and
+    // t up from its bottom, both in [0, 1]: from a random point of the lens (of diameter
+    // `aperture`) through the point of the viewport at focus_dist, at a random time in
+    // [time0, time1). The direction is not unit: to the viewport, as those books make it. A
+    // camera made by default is their first one (section 7 of book 1): focal length 1, no lens,
+    // and an aspect of 16:9 unless aspect_ratio was set.
+    ray get_ray(double s, double t) const;
+
     double aspect_ratio = 1.0;  // Ratio of image width over height
     int image_width = 100;      // Rendered image width in pixel count
     int image_height = 0;       // Rendered image height; 0 = image_width / aspect_ratio, as in the book
@@ -197,6 +226,10 @@ class camera {
     }
 
   private:
+    bool older_books_camera_ = false; // made by one of the v3 constructors (get_ray)
+    double lens_radius_ = 0;
+    double time0_ = 0, time1_ = 0;
+
     static bool finite3(const vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
     // v divided by its largest absolute component: the same direction, a length in [1, sqrt(3)]
@@ -242,6 +275,22 @@ class camera {
                 "focus_dist must be positive and finite, got " + std::to_string(focus_dist));
     }
 };
+
+inline ray camera::get_ray(double s, double t) const {
+    const double aspect = older_books_camera_ || aspect_ratio != 1.0 ? aspect_ratio : 16.0 / 9.0;
+    const double focus = older_books_camera_ ? focus_dist : 1.0;
+    const double viewport_height = 2 * std::tan(degrees_to_radians(vfov) / 2), viewport_width = aspect * viewport_height;
+    const vec3 w = unit_vector(lookfrom - lookat), u = unit_vector(cross(vup, w)), v = cross(w, u);
+    const vec3 horizontal = focus * viewport_width * u, vertical = focus * viewport_height * v;
+    const point3 lower_left_corner = lookfrom - horizontal / 2 - vertical / 2 - focus * w;
+    vec3 offset(0, 0, 0);
+    if (older_books_camera_ && lens_radius_ > 0) {
+        const vec3 rd = lens_radius_ * random_in_unit_disk();
+        offset = u * rd.x() + v * rd.y();
+    }
+    const double time = time1_ > time0_ ? time0_ + (time1_ - time0_) * random_double() : time0_;
+    return ray(lookfrom + offset, lower_left_corner + s * horizontal + t * vertical - lookfrom - offset, time);
+}
 
 // Renders `world` as `cam` sees it, with the path tracer: the image and the statistics.
 inline render_result render(const camera& cam, const hittable& world) {

@@ -13,6 +13,7 @@
 #include "ray.h"
 
 #include <memory>
+#include <utility>
 
 namespace rt {
 
@@ -27,6 +28,37 @@ class hit_record {
     double u = 0; // surface coordinates of the hit, for textures (book 2)
     double v = 0;
     bool front_face = false;
+    // The older books' (v3) name for mat: rec.mat_ptr->scatter(...) in their ray_color. Always
+    // this record's own mat (a copy binds it anew, which the copies below see to).
+    std::shared_ptr<material>& mat_ptr = mat;
+
+    hit_record() = default;
+    hit_record(const hit_record& o)
+        : p(o.p), normal(o.normal), mat(o.mat), t(o.t), u(o.u), v(o.v), front_face(o.front_face) {}
+    hit_record(hit_record&& o) noexcept
+        : p(o.p), normal(o.normal), mat(std::move(o.mat)), t(o.t), u(o.u), v(o.v), front_face(o.front_face) {}
+    hit_record& operator=(const hit_record& o) {
+        mat = o.mat;
+        copy_values(o);
+        return *this;
+    }
+    hit_record& operator=(hit_record&& o) noexcept {
+        mat = std::move(o.mat);
+        copy_values(o);
+        return *this;
+    }
+
+  private:
+    void copy_values(const hit_record& o) {
+        p = o.p;
+        normal = o.normal;
+        t = o.t;
+        u = o.u;
+        v = o.v;
+        front_face = o.front_face;
+    }
+
+  public:
 
     // Sets the hit record normal vector against the ray.
     // NOTE: the parameter `outward_normal` is assumed to have unit length.
@@ -41,6 +73,11 @@ class hittable {
     virtual ~hittable() = default;
 
     virtual bool hit(const ray& r, interval ray_t, hit_record& rec) const = 0;
+    // The older books' (v3) form, world.hit(r, 0.001, infinity, rec) in their ray_color: hits
+    // with t in (ray_tmin, ray_tmax).
+    bool hit(const ray& r, double ray_tmin, double ray_tmax, hit_record& rec) const {
+        return hit(r, interval(ray_tmin, ray_tmax), rec);
+    }
 
     // A box that holds everything hit() can hit (book 2). The default, for shapes written before
     // book 2 introduces it, is the whole of space: such a shape is tested against every ray.

@@ -22,6 +22,7 @@ class hittable_list : public hittable {
 
     void add(std::shared_ptr<hittable> object) { objects.push_back(object); }
 
+    using hittable::hit; // the older books' hit(r, t_min, t_max, rec) too
     bool hit(const ray& r, interval ray_t, hit_record& rec) const override {
         hit_record temp_rec;
         bool hit_anything = false;

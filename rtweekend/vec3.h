@@ -125,6 +125,12 @@ inline vec3 random_on_hemisphere(const vec3& normal) {
     return dot(on_unit_sphere, normal) > 0.0 ? on_unit_sphere : -on_unit_sphere;
 }
 
+// The older books' (v3) point of the half of the unit ball on `normal`'s side: uniform in it.
+inline vec3 random_in_hemisphere(const vec3& normal) {
+    vec3 in_unit_sphere = random_in_unit_sphere();
+    return dot(in_unit_sphere, normal) > 0.0 ? in_unit_sphere : -in_unit_sphere;
+}
+
 // A direction on the hemisphere around +z with density cos(theta) / pi (book 3): r2 = sin^2 theta
 // is uniform, because the projected disk area under a cosine lobe grows linearly with it, and
 // phi = 2 pi r1 goes round the axis.
@@ -161,6 +167,7 @@ using rt::random_in_unit_disk;
 using rt::random_cosine_direction;
 using rt::random_in_unit_sphere;
 using rt::random_on_hemisphere;
+using rt::random_in_hemisphere;
 using rt::random_unit_vector;
 using rt::reflect;
 using rt::refract;

@@ -295,6 +295,60 @@ void check_rejected(const camera& cam, const char* what) {
 
 } // namespace
 
+TEST_CASE("camera: the older books' (v3) cameras and get_ray(s, t), by hand") {
+    auto near = [](const vec3& a, const vec3& b) { return (a - b).length() < 1e-12; };
+    // Made by default: their first camera, 16:9 at focal length 1 from the origin down -z: the
+    // viewport spans x in [-16/9, 16/9], y in [-1, 1] at z = -1.
+    {
+        camera cam;
+        CHECK(near(cam.get_ray(0, 0).direction(), vec3(-16.0 / 9, -1, -1)));
+        CHECK(near(cam.get_ray(1, 1).direction(), vec3(16.0 / 9, 1, -1)));
+        CHECK(near(cam.get_ray(0.5, 0.5).direction(), vec3(0, 0, -1)));
+        CHECK(near(cam.get_ray(0.25, 0.75).origin(), vec3(0, 0, 0)));
+        cam.aspect_ratio = 2; // a set aspect ratio counts
+        CHECK(near(cam.get_ray(1, 0).direction(), vec3(2, -1, -1)));
+    }
+    // camera(vfov, aspect): vfov 60 gives a half-height tan(30 deg) = 1 / sqrt(3).
+    {
+        camera cam(60, 1.5);
+        const double h = 1 / std::sqrt(3.0);
+        CHECK(near(cam.get_ray(1, 1).direction(), vec3(1.5 * h, h, -1)));
+        CHECK(cam.vfov == 60);
+        CHECK(cam.aspect_ratio == 1.5);
+    }
+    // camera(lookfrom, lookat, vup, vfov, aspect): from (3, 0, 0) towards the origin with vfov
+    // 90 and aspect 2: w = +x, u = vup x w = (0, 0, -1), v = w x u = (0, 1, 0), horizontal = 4 u,
+    // vertical = 2 v; the corner (s, t) = (0, 0) is at lookfrom - horizontal / 2 - vertical / 2 - w
+    // = (3, 0, 0) + (0, 0, 2) - (0, 1, 0) - (1, 0, 0) = (2, -1, 2).
+    {
+        camera cam(point3(3, 0, 0), point3(0, 0, 0), vec3(0, 1, 0), 90, 2);
+        const ray r = cam.get_ray(0, 0);
+        CHECK(near(r.origin(), point3(3, 0, 0)));
+        CHECK(near(r.direction(), vec3(-1, -1, 2)));
+        CHECK(near(cam.get_ray(0.5, 0.5).direction(), vec3(-1, 0, 0)));
+    }
+    // With a lens: every ray leaves a point of the lens disk (radius aperture / 2, in the plane
+    // across w) and passes through the viewport point at focus_dist, whatever the lens point.
+    {
+        const double aperture = 0.4, focus = 5;
+        camera cam(point3(0, 0, 0), point3(0, 0, -1), vec3(0, 1, 0), 90, 1, aperture, focus, 0.25, 0.75);
+        CHECK(cam.focus_dist == 5);
+        CHECK(std::tan(cam.defocus_angle * deg / 2) * focus == doctest::Approx(aperture / 2)); // the renderer's lens
+        bool moved = false;
+        for (int i = 0; i < 200; ++i) {
+            const ray r = cam.get_ray(0.75, 0.25);
+            CHECK(r.origin().z() == 0);
+            CHECK(r.origin().length() <= aperture / 2 + 1e-12);
+            moved = moved || r.origin().length() > 0.01;
+            // The viewport point: (s - 1/2, t - 1/2) of a 2 x 2 viewport, scaled to focus_dist.
+            CHECK(near(r.origin() + r.direction(), point3(0.5 * focus, -0.5 * focus, -focus)));
+            CHECK(r.time() >= 0.25);
+            CHECK(r.time() < 0.75);
+        }
+        CHECK(moved);
+    }
+}
+
 TEST_CASE("camera::check rejects invalid settings with scene_error") {
     const camera good = general_camera();
     CHECK_NOTHROW(good.check());
