@@ -61,6 +61,21 @@ class constant_medium : public hittable {
     double density() const { return density_; }
     const std::shared_ptr<material>& phase_function() const { return phase_function_; }
 
+    // Where a ray scatters in the chord [enter, leave] of its line through a medium of `density`,
+    // cut to ray_t: one free-flight draw, taken only when the cut chord is not empty (as the
+    // crossing walk in hit() draws), and rec filled at that distance (scattering_point). False
+    // when the ray gets through. The closed forms (a sphere's chord here, convex_medium's) share
+    // it, so that they draw as hit() does. ray_length is |r.direction()|.
+    static bool scatter_in_chord(const ray& r, double ray_length, double enter, double leave, interval ray_t,
+                                 double density, const std::shared_ptr<material>& phase, hit_record& rec) {
+        const double from = std::fmax(enter, ray_t.min), to = std::fmin(leave, ray_t.max);
+        if (!(from < to)) return false;
+        const double distance = -std::log(random_double()) / density;
+        if (!(distance < (to - from) * ray_length)) return false;
+        scattering_point(r, from + distance / ray_length, phase, rec);
+        return true;
+    }
+
     // Fills rec with the scattering point at r.at(t): of the phase function, with no surface
     // (the normal is arbitrary, the face the front one, no texture coordinates).
     static void scattering_point(const ray& r, double t, const std::shared_ptr<material>& phase, hit_record& rec) {
@@ -113,12 +128,7 @@ inline bool constant_medium::hit(const ray& r, interval ray_t, hit_record& rec) 
         double t0, t1;
         const sphere& s = *boundary_sphere_;
         if (!sphere_roots(r.origin(), r.direction(), s.center(r.time()), s.radius(), t0, t1)) return false;
-        const double from = std::fmax(t0, ray_t.min), to = std::fmin(t1, ray_t.max);
-        if (!(from < to)) return false;
-        const double distance = -std::log(random_double()) / density_;
-        if (!(distance < (to - from) * ray_length)) return false;
-        scattering_point(r, from + distance / ray_length, phase_function_, rec);
-        return true;
+        return scatter_in_chord(r, ray_length, t0, t1, ray_t, density_, phase_function_, rec);
     }
     double distance_left = -1; // the free-flight distance still to go inside; drawn at first need
     double t = -infinity;      // the last crossing: from the start of the ray's line

@@ -47,11 +47,5 @@ foreach(name IN LISTS selected)
   string(APPEND script "set_tests_properties([==[${name}]==] PROPERTIES LABELS ${LABEL})\n")
 endforeach()
 
-# Rewritten only when it changes.
-set(old "")
-if(EXISTS ${OUTPUT})
-  file(READ ${OUTPUT} old)
-endif()
-if(NOT old STREQUAL script)
-  file(WRITE ${OUTPUT} "${script}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/write_if_changed.cmake)
+rt_write_if_changed(${OUTPUT} "${script}")

@@ -27,7 +27,6 @@
 #include "../interval.h"
 #include "../ray.h"
 #include "../vec3.h"
-#include "rng.h"
 
 #include <cmath>
 #include <limits>
@@ -147,12 +146,7 @@ inline bool convex_medium::hit(const ray& r, interval ray_t, hit_record& rec) co
         else
             leave = std::fmin(leave, t);
     }
-    const double from = std::fmax(enter, ray_t.min), to = std::fmin(leave, ray_t.max);
-    if (!(from < to)) return false;
-    const double distance = -std::log(random_double()) / density_;
-    if (!(distance < (to - from) * ray_length)) return false;
-    constant_medium::scattering_point(r, from + distance / ray_length, phase_function_, rec);
-    return true;
+    return constant_medium::scatter_in_chord(r, ray_length, enter, leave, ray_t, density_, phase_function_, rec);
 }
 
 } // namespace rt

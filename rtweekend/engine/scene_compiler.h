@@ -178,26 +178,20 @@ class scene_compiler {
             faces.push_back({xf.point(q.corner()), xf.vector(q.edge_u()), xf.vector(q.edge_v())});
             return true;
         }
-        if (type == typeid(hittable_list)) {
-            for (const auto& child : static_cast<const hittable_list&>(object).objects)
-                if (!child || !collect_faces(*child, xf, faces)) return false;
-            return true;
-        }
-        if (type == typeid(bvh_node)) {
-            const auto& node = static_cast<const bvh_node&>(object);
-            if (!node.left() || !collect_faces(*node.left(), xf, faces)) return false;
-            return node.right() == node.left() || (node.right() && collect_faces(*node.right(), xf, faces));
-        }
-        if (const hittable* child = transformed_child(object)) {
-            affine_map inner;
+        if (type != typeid(hittable_list) && type != typeid(bvh_node) && !is_transform(type)) return false;
+        affine_map inner; // a list's or a tree's children stay where they are
+        if (is_transform(type)) {
             try {
                 inner = transform_map(object);
             } catch (const scene_error&) {
                 return false; // a transform the medium's own hit() is left to cope with
             }
-            return collect_faces(*child, xf.then(inner), faces);
         }
-        return false;
+        bool all_quads = true;
+        for_each_child(object, [&](const hittable& child) {
+            all_quads = all_quads && collect_faces(child, xf.then(inner), faces);
+        });
+        return all_quads;
     }
 
     // Whether every shape under `object` is one the compiler lays out itself (so a transform over
@@ -543,10 +537,13 @@ class scene_compiler {
         uint32_t index = right_way_round;
         const char* refusal = nullptr;
         if (d.kind == material_kind::dielectric || d.kind == material_kind::fresnel_dielectric) {
-            if (d.absorbs_inside()) refusal = "absorbing glass";
-            d.refraction_index = 1.0f / d.refraction_index;
-            index = static_cast<uint32_t>(out_.materials.size());
-            out_.materials.push_back(d);
+            if (d.absorbs_inside()) {
+                refusal = "absorbing glass";
+            } else {
+                d.refraction_index = 1.0f / d.refraction_index;
+                index = static_cast<uint32_t>(out_.materials.size());
+                out_.materials.push_back(d);
+            }
         } else if (d.kind == material_kind::user && typeid(*m) != typeid(isotropic)) { // a phase function has no faces
             refusal = "a material of the program's own";
         } else if (d.emits() && !d.two_sided) {
