@@ -13,8 +13,8 @@
 // (see on_interrupt).
 
 #include <rtweekend/camera.h>
-#include <rtweekend/io/image_write.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/image/image_write.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <atomic>
 #include <cctype>

@@ -38,14 +38,14 @@
 
 #include "plot_svg.h"
 
-#include <rtweekend/io/image_read.h>
+#include <rtweekend/image/image_read.h>
 #include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
 #include <rtweekend/measure/metrics.h>
 #include <rtweekend/io/ray_file.h>
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/io/scene_file.h>
 
 #include <sys/resource.h>

@@ -12,7 +12,7 @@
 
 #include "app_options.h"
 
-#include <rtweekend/io/image_read.h>
+#include <rtweekend/image/image_read.h>
 #include <rtweekend/measure/metrics.h>
 
 #include <cstdio>

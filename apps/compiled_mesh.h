@@ -7,7 +7,7 @@
 // The mesh is the whole world, compiled about the origin: ray files are in the mesh's own
 // coordinates. `world` keeps the shape the compiled scene was made from alive.
 
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/mesh.h>
 

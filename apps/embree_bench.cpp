@@ -35,7 +35,7 @@
 
 #include <rtweekend/io/ray_file.h>
 #include <rtweekend/material.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <embree3/rtcore.h>
 

@@ -34,10 +34,10 @@
 // touch (all its edges interior) is accepted and treated as one vertex of valence n, the sum of
 // both fans' neighbours. Zero-area triangles with three distinct indices are fine.
 
-#include <rtweekend/io/file.h>
+#include <rtweekend/core/file.h>
 #include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 #include <rtweekend/vec3.h>
 
 #include <algorithm>

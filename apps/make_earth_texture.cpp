@@ -12,11 +12,11 @@
 // on every machine and every run. tests/data/textures/earthmap.png was made with it (see
 // tests/data/README.md).
 
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/io/file.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/core/file.h>
+#include <rtweekend/image/image_write.h>
 #include <rtweekend/perlin.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <algorithm>
 #include <cmath>

@@ -10,10 +10,10 @@
 // error line; --allow-gaps merges what there is (each pixel the mean of the samples present).
 // The output's format follows its extension, as render's does; it is written atomically.
 
-#include <rtweekend/engine/fixed_point.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/render/fixed_point.h>
+#include <rtweekend/image/image_write.h>
 #include <rtweekend/io/slice_file.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <cstdio>
 #include <cstdlib>

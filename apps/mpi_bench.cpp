@@ -1,4 +1,4 @@
-// mpi_bench: what combining a render over MPI ranks costs (rtweekend/engine/mpi_render.h), apart
+// mpi_bench: what combining a render over MPI ranks costs (rtweekend/render/mpi_render.h), apart
 // from rendering. Never run as a test; for measuring on a quiet machine or a cluster.
 //
 //   mpirun -n 2 mpi_bench --reduce                    a 3840x2160 image of int64 RGB sums (199 MB)
@@ -25,7 +25,7 @@
 
 namespace {
 
-// The chunk size of engine/mpi_render.h (MPI counts are ints).
+// The chunk size of render/mpi_render.h (MPI counts are ints).
 constexpr size_t chunk = size_t(1) << 22;
 
 [[noreturn]] void usage(int rank, const std::string& message) {

@@ -5,7 +5,7 @@
 // polyline and marker shape per series, a legend, axis labels and a title. Every number is
 // written with "%.2f", so the same data always gives the same bytes.
 
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <algorithm>
 #include <cmath>

@@ -33,13 +33,13 @@
 // A tracer answer that cannot be right (t outside the ray's range or not finite, a zero or
 // non-finite normal) throws rt::scene_error rather than producing a subtly different workload.
 
-#include <rtweekend/constants.h>
+#include <rtweekend/core/constants.h>
 #include <rtweekend/io/ray_file.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/sampling.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/core/sampling.h>
+#include <rtweekend/core/scene_error.h>
 #include <rtweekend/vec3.h>
-#include <rtweekend/engine/vec3f.h>
+#include <rtweekend/core/vec3f.h>
 
 #include <cmath>
 #include <cstddef>

@@ -21,11 +21,11 @@
 #include "app_options.h"
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/path_tracer.h>
-#include <rtweekend/engine/whitted.h>
+#include <rtweekend/render/path_tracer.h>
+#include <rtweekend/course/whitted.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/io/slice_file.h>
-#include <rtweekend/io/text_lines.h>
+#include <rtweekend/core/text_lines.h>
 #include <rtweekend/io/xml_scene.h>
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// render_mpi: render's scenes and flags, the render split over MPI ranks (rtweekend/engine/
+// render_mpi: render's scenes and flags, the render split over MPI ranks (rtweekend/render/
 // mpi_render.h says how), and the same output, byte for byte, as render writes with the same seed.
 //
 //   mpirun -n 4 render_mpi scene.txt --spp 256 -o scene.png
@@ -15,7 +15,8 @@
 
 #include "render_command.h"
 
-#include <rtweekend/engine/mpi_render.h>
+#include <rtweekend/course/whitted_mpi.h>
+#include <rtweekend/render/mpi_render.h>
 
 #include <mpi.h>
 

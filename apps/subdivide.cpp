@@ -11,7 +11,7 @@
 
 #include "loop_subdivision.h"
 
-#include <rtweekend/io/file.h>
+#include <rtweekend/core/file.h>
 #include <rtweekend/io/obj.h>
 #include <rtweekend/io/ply.h>
 

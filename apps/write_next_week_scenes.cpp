@@ -7,7 +7,7 @@
 
 #include "next_week_scenes.h"
 
-#include <rtweekend/io/file.h>
+#include <rtweekend/core/file.h>
 
 #include <cstdio>
 #include <sstream>

@@ -5,7 +5,7 @@
 //   world = hittable_list(make_shared<bvh_node>(world));
 //
 // The renderer does not need it: it compiles every world into its own eight-wide BVH
-// (engine/bvh.h) and looks through a bvh_node to the shapes below, as it does through a
+// (scene/bvh.h) and looks through a bvh_node to the shapes below, as it does through a
 // hittable_list, so wrapping a world in one changes nothing in the image or the speed. The tree
 // here serves code that calls hit() itself (a book-style ray_color of one's own): each node splits
 // its objects at the median of their bounding boxes' centres along the longest axis of the box
@@ -20,7 +20,7 @@
 #include "hittable_list.h"
 #include "interval.h"
 #include "ray.h"
-#include "scene_error.h"
+#include "core/scene_error.h"
 
 #include <algorithm>
 #include <cstddef>

@@ -7,23 +7,23 @@
 //   image img = cam.render_image(world);     // linear radiance, for programs and tests
 //
 // The camera is the teaching surface over three engine pieces: frame() turns the view settings
-// into the geometry that generates rays (engine/camera_frame.h), settings() hands the sampling
-// settings over as render_settings (engine/render_settings.h), and render() runs the path tracer
-// (engine/path_tracer.h) with them.
+// into the geometry that generates rays (render/camera_frame.h), settings() hands the sampling
+// settings over as render_settings (render/render_settings.h), and render() runs the path tracer
+// (render/path_tracer.h) with them.
 
-#include "constants.h"
-#include "engine/camera_frame.h"
-#include "engine/environment.h"
-#include "engine/path_tracer.h"
-#include "engine/render_settings.h"
-#include "engine/rng.h"
-#include "engine/scheduler.h"
-#include "engine/vec3f.h"
+#include "core/constants.h"
+#include "render/camera_frame.h"
+#include "render/environment.h"
+#include "render/path_tracer.h"
+#include "render/render_settings.h"
+#include "core/rng.h"
+#include "render/scheduler.h"
+#include "core/vec3f.h"
 #include "hittable.h"
-#include "io/image_write.h"
-#include "io/input_limits.h"
+#include "image/image_write.h"
+#include "core/input_limits.h"
 #include "point_light.h"
-#include "scene_error.h"
+#include "core/scene_error.h"
 #include "vec3.h"
 
 #include <atomic>
@@ -95,15 +95,15 @@ class camera {
     // takes, and render_stats::samples_saved counts the samples not taken.
     double adaptive_error = 0;
     int adaptive_min_samples = 16;
-    // How light is found (engine/render_settings.h): next-event estimation with multiple
+    // How light is found (render/render_settings.h): next-event estimation with multiple
     // importance sampling (the default), bsdf (the books' path tracer of books 1 and 2) or
     // mixture (book 3's).
     path_estimator estimator = path_estimator::nee;
-    // Where each sample's random numbers come from (engine/sampler.h): sobol (Owen-scrambled,
+    // Where each sample's random numbers come from (render/sampler.h): sobol (Owen-scrambled,
     // blue-noise ordered; the default), stratified (jittered) or independent (plain random).
     sampler_kind sampler = sampler_kind::sobol;
     // With nee and uniform sampling: light paths per pixel per sample that find caustics from the
-    // lights (engine/caustic_paths.h); 0 leaves them to the camera paths.
+    // lights (render/caustic_paths.h); 0 leaves them to the camera paths.
     double caustic_paths = 0.25;
     // Set *stop to true to end the render early with the samples taken so far
     // (render_settings::stop); the flag belongs to the caller and must outlive the render.

@@ -25,9 +25,9 @@
 // misses the rest. A boundary that is not closed has no inside: the fog is where the crossings
 // found say it is.
 //
-// In the renderer the medium is a user-written shape in the BVH (engine/user_shape_set.h), called
+// In the renderer the medium is a user-written shape in the BVH (scene/user_shape_set.h), called
 // through this hit() with random_double() drawing from the sample's own generator; its isotropic
-// phase function is a built-in material of the contract (engine/bsdf.h), so next-event estimation
+// phase function is a built-in material of the contract (core/bsdf.h), so next-event estimation
 // and multiple importance sampling work at every scattering point inside the fog.
 
 #include "color.h"
@@ -35,7 +35,7 @@
 #include "interval.h"
 #include "material.h"
 #include "ray.h"
-#include "scene_error.h"
+#include "core/scene_error.h"
 #include "sphere.h"
 #include "texture.h"
 #include "vec3.h"

@@ -2,7 +2,7 @@
 // hittable: anything a ray can hit, and hit_record, what a hit reports (the books' interface).
 //
 // The built-in shapes are recognised by the renderer and copied into flat arrays
-// (engine/scene_compiler.h), so their virtual hit() below serves the teaching surface and user
+// (scene/scene_compiler.h), so their virtual hit() below serves the teaching surface and user
 // code only. A user's own subclass is rendered through its virtual hit(): inside the renderer's
 // BVH when it reports a bounding box (book 2's bounding_box()), tested against every ray when it
 // does not (a book-1 class, which has none). Book 3's pdf_value() and random() let a shape be

@@ -2,7 +2,7 @@
 // hittable_list: a list of hittables that is itself a hittable (the books' world container).
 // Also brings in transform.h (translate, rotate_y), as the book's hittable.h does (see the end).
 
-#include "engine/rng.h"
+#include "core/rng.h"
 #include "hittable.h"
 
 #include <cstddef>

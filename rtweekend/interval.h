@@ -2,7 +2,7 @@
 // interval: a closed range of reals [min, max], as in the books (book 2 adds the union of two
 // intervals and shifting by a displacement).
 
-#include "constants.h"
+#include "core/constants.h"
 
 namespace rt {
 

@@ -8,7 +8,7 @@
 //   dielectric(refraction_index) glass: reflects or refracts, chosen by Schlick's approximation
 //   diffuse_light(emit)          an emitter (books 2 and 3): emits `emit` from its front face
 //                                only (book 3), or from both with diffuse_light(emit, true) (book 2)
-// and two beyond the books, with the exact Fresnel equations (engine/fresnel.h):
+// and two beyond the books, with the exact Fresnel equations (core/fresnel.h):
 //   conductor(n, k, tint)        a smooth metal of complex index n + ik: mirror reflection
 //                                weighted by tint * Fr(cos); n, k scalars or per-channel colours
 //   dielectric(refraction_index, absorption)
@@ -26,7 +26,7 @@
 //                                CENG795 course's surface); diffuse + specular is scaled down to 1
 //                                per channel where it exceeds it, so no energy is created
 //
-// Each material's physics is written once, in the renderer's material contract (engine/bsdf.h:
+// Each material's physics is written once, in the renderer's material contract (core/bsdf.h:
 // sample, eval, pdf), which every integrator calls. The renderer recognises these classes and
 // calls the contract directly, without virtual calls. The virtual functions below are the books'
 // interface, for code that calls them itself (a ray_color of one's own); for the built-in
@@ -45,10 +45,10 @@
 // the other into scope (`using material::scatter;`), so it is not hidden.
 
 #include "color.h"
-#include "engine/bsdf.h"
-#include "engine/fresnel.h"
-#include "engine/rng.h"
-#include "engine/vec3f.h"
+#include "core/bsdf.h"
+#include "core/fresnel.h"
+#include "core/rng.h"
+#include "core/vec3f.h"
 #include "hittable.h"
 #include "pdf.h"
 #include "ray.h"
@@ -186,7 +186,7 @@ class lambertian : public material {
 
     // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
     // For a texture other than a solid_color the scene compiler adds the texture's index into
-    // the scene's texture table (engine/texture_table.h); the albedo is looked up per hit.
+    // the scene's texture table (scene/texture_table.h); the albedo is looked up per hit.
     compiled_material compiled() const {
         compiled_material m;
         m.kind = material_kind::lambertian;

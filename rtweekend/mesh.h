@@ -5,7 +5,7 @@
 //   auto bunny = load_obj("bunny.obj", make_shared<lambertian>(color(0.8, 0.8, 0.8)));
 //   world.add(bunny);
 //
-// The renderer copies the triangles into its BVH with everything else (engine/scene_compiler.h), so a mesh of a
+// The renderer copies the triangles into its BVH with everything else (scene/scene_compiler.h), so a mesh of a
 // million triangles renders about as fast as one of a thousand. The virtual hit() below tests
 // every triangle in turn: it is there for code that calls world.hit() itself, and is slow for
 // big meshes.
@@ -35,7 +35,7 @@ class triangle_mesh : public hittable {
     // Shade with the normals interpolated across each triangle (barycentrically) instead of the
     // flat geometric normal. Needs normals and face_normals (from the file, or
     // compute_vertex_normals()). Both renderers use them; the path tracer's rule for where they
-    // disagree with the triangles is in engine/path_tracer.h (vertex_material).
+    // disagree with the triangles is in render/path_tracer.h (vertex_material).
     bool smooth_shading = false;
 
     // Gives every vertex the area-weighted mean of its faces' normals (each face's cross product,

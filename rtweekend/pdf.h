@@ -16,7 +16,7 @@
 //
 // hittable_pdf keeps a reference to the shape, as the book's does: the shape must outlive it.
 
-#include "constants.h"
+#include "core/constants.h"
 #include "hittable.h"
 #include "onb.h"
 #include "vec3.h"

@@ -13,10 +13,10 @@
 // book's vec3(random_double(), ...) in; see vec3.h), then the shuffles of perm_x, perm_y and
 // perm_z, each random_int(0, i) for i = 255 down to 1. Outside a render random_double() is the
 // book's rand() / (RAND_MAX + 1.0), so a main that calls srand() as the book's would gets the
-// book's noise; inside a render it is the sample's own generator (engine/rng.h), so a texture
+// book's noise; inside a render it is the sample's own generator (core/rng.h), so a texture
 // made there is still the same at any thread count.
 
-#include "engine/rng.h"
+#include "core/rng.h"
 #include "vec3.h"
 
 #include <cmath>

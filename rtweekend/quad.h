@@ -13,8 +13,8 @@
 // origin, and pdf_value converts that area density, 1 / area, to solid angle (distance^2 / |cos|).
 
 #include "aabb.h"
-#include "constants.h"
-#include "engine/rng.h"
+#include "core/constants.h"
+#include "core/rng.h"
 #include "hittable.h"
 #include "hittable_list.h"
 #include "interval.h"

@@ -1,6 +1,6 @@
 #pragma once
 // ray: origin + t * direction, in double precision on the teaching surface (the renderer's
-// float rays, ray3f, live in engine/vec3f.h). Book 2 gives rays a time, for motion blur; it is
+// float rays, ray3f, live in core/vec3f.h). Book 2 gives rays a time, for motion blur; it is
 // kept and handed on so book-2 and book-3 code compiles (nothing in the scene moves yet).
 
 #include "vec3.h"

@@ -8,7 +8,7 @@
 //                                    clamped into the image; row 0 is the top
 //   img.linear(x, y)                 the pixel's linear RGB, what a texture returns
 //   img.linear_pixels()              every pixel's linear RGB, rows top to bottom, shared so that the
-//                                    renderer can keep them alive (engine/texture_table.h)
+//                                    renderer can keep them alive (scene/texture_table.h)
 //   img.decode(bytes, name)          the same from a file's bytes in memory (name for messages)
 //
 // Where the file is looked for, as in the book: in $RTW_IMAGES if that is set, then the name as
@@ -21,19 +21,19 @@
 // A Radiance .hdr file stores linear radiance: linear() returns it unchanged (and unclamped), and
 // pixel_data() holds its sRGB encoding, clamped to [0, 1].
 //
-// The file is read whole by io/file.h's read_file (a regular file of at most 4 GiB), and its
-// headers are checked before stb_image decodes it (io/image_header.h for PNG and BMP, then the
-// size stb_image reports against io/input_limits.h's 2^28 pixels): stb_image allocates the image a
+// The file is read whole by core/file.h's read_file (a regular file of at most 4 GiB), and its
+// headers are checked before stb_image decodes it (core/image_header.h for PNG and BMP, then the
+// size stb_image reports against core/input_limits.h's 2^28 pixels): stb_image allocates the image a
 // header describes before it finds out whether the file holds it. A JPEG file's entropy-coded data
-// is then read through by libjpeg-turbo when the build has it (io/jpeg_check.h): stb_image 2.27
+// is then read through by libjpeg-turbo when the build has it (core/jpeg_check.h): stb_image 2.27
 // misbehaves on some damaged data, and a cut-short JPEG is refused rather than filled with grey.
 // The pixels are stb_image's either way.
 
-#include "io/file.h"
-#include "io/image_header.h"
-#include "io/jpeg_check.h"
-#include "io/text_lines.h"
-#include "scene_error.h"
+#include "core/file.h"
+#include "core/image_header.h"
+#include "core/jpeg_check.h"
+#include "core/text_lines.h"
+#include "core/scene_error.h"
 
 #include <climits>
 #include <cmath>
@@ -90,7 +90,7 @@ double linear_to_srgb(double linear);
 // stb_image decodes the files. As image.h does with stb_image_write, this compiles a private,
 // static copy, unless the program brings its own: if stb_image.h was already included, its
 // declarations are used; if STB_IMAGE_IMPLEMENTATION is defined before this header, that
-// implementation is compiled here instead of ours. io/image_read.h uses this same copy. The
+// implementation is compiled here instead of ours. image/image_read.h uses this same copy. The
 // decoders are those a texture is likely to come in; functions a program never calls are not
 // compiled into it (they are static), so the cost is parsing them.
 #ifndef STBI_INCLUDE_STB_IMAGE_H
@@ -134,7 +134,7 @@ namespace detail {
 // BMP headers (image_header.h), then, for every format stb_image knows, the size it reads from
 // the header (stbi_info parses headers only) against the limits of input_limits.h and against
 // what the file's length can hold (image_data_problem, image_header.h); last, when the build has
-// libjpeg-turbo, a JPEG's entropy-coded data read through in that frame (io/jpeg_check.h says why).
+// libjpeg-turbo, a JPEG's entropy-coded data read through in that frame (core/jpeg_check.h says why).
 inline std::string stb_input_problem(const std::string& bytes) {
     std::string problem = image_header_problem(bytes);
     if (!problem.empty()) return problem;

@@ -6,7 +6,7 @@
 
 // The teaching surface: the books' headers in the books' order, then the shapes, materials and
 // scene types this library adds in the same vocabulary.
-#include "constants.h"
+#include "core/constants.h"
 #include "vec3.h"
 #include "color.h"
 #include "ray.h"
@@ -27,17 +27,17 @@
 #include "triangle.h"
 #include "mesh.h"
 #include "whitted_material.h"
-#include "whitted_scene.h"
-#include "scene_error.h"
+#include "course/whitted_scene.h"
+#include "core/scene_error.h"
 
 // The engine underneath (the compiled scene and its compiler, the integrators), and the file
-// formats. Not included here: io/image_read.h, measure/metrics.h and io/ray_file.h, which serve
+// formats. Not included here: image/image_read.h, measure/metrics.h and io/ray_file.h, which serve
 // the measuring tools only.
-#include "engine/scene_compiler.h"
-#include "engine/path_tracer.h"
-#include "engine/whitted.h"
-#include "io/file.h"
-#include "io/image_write.h"
+#include "scene/scene_compiler.h"
+#include "render/path_tracer.h"
+#include "course/whitted.h"
+#include "core/file.h"
+#include "image/image_write.h"
 #include "io/obj.h"
 #include "io/ply.h"
 #include "io/scene_file.h"

@@ -22,7 +22,7 @@
 // discriminant is computed from the distance of the centre to the ray's line, and the near root
 // from c/q, so neither suffers catastrophic cancellation for small or distant spheres.
 
-#include "constants.h"
+#include "core/constants.h"
 #include "hittable.h"
 #include "interval.h"
 #include "material.h"

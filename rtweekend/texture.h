@@ -12,14 +12,14 @@
 //
 //   auto mat = make_shared<lambertian>(make_shared<checker_texture>(0.32, color(.2, .3, .1), color(.9, .9, .9)));
 //
-// The renderer compiles these four into a flat table (engine/texture_table.h) and evaluates them
+// The renderer compiles these four into a flat table (scene/texture_table.h) and evaluates them
 // without virtual calls; a texture of another class (a user's own) is looked up through value().
 
 #include "color.h"
 #include "interval.h"
 #include "perlin.h"
 #include "rtw_stb_image.h"
-#include "scene_error.h"
+#include "core/scene_error.h"
 #include "vec3.h"
 
 #include <cmath>

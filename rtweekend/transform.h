@@ -20,7 +20,7 @@
 //
 // The renderer applies a transform to the shapes themselves when it can (a mesh under any of
 // them, a sphere under one that keeps it round) and otherwise, or when one object is placed many
-// times, traces the object in its own frame (an instance: engine/instance_set.h).
+// times, traces the object in its own frame (an instance: scene/instance_set.h).
 //
 //   shared_ptr<hittable> box1 = box(point3(0, 0, 0), point3(165, 330, 165), white);
 //   box1 = make_shared<rotate_y>(box1, 15);                   // degrees, about the y axis
@@ -35,7 +35,7 @@
 // are.
 
 #include "aabb.h"
-#include "constants.h"
+#include "core/constants.h"
 #include "hittable.h"
 #include "interval.h"
 #include "ray.h"

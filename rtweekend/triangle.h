@@ -8,10 +8,10 @@
 // counted by one of them and never slips between them, which the classic Moller-Trumbore test
 // cannot promise.
 //
-// The renderer tests triangles in float, several at a time (engine/triangle_set.h), and falls back to
+// The renderer tests triangles in float, several at a time (scene/triangle_set.h), and falls back to
 // triangle_edge_functions in double when a ray passes exactly through an edge.
 
-#include "engine/simd.h"
+#include "core/simd.h"
 #include "hittable.h"
 
 #include <cmath>

@@ -1,11 +1,11 @@
 #pragma once
 // vec3: the book's three-component vector of doubles, used for points (point3), directions and
 // colours (color) on the teaching surface. Scenes are described in double precision; the renderer
-// converts them to float relative to the camera when it compiles the scene (see engine/scene_compiler.h), so a
+// converts them to float relative to the camera when it compiles the scene (see scene/scene_compiler.h), so a
 // scene far from the origin keeps its precision.
 
-#include "constants.h"
-#include "engine/rng.h"
+#include "core/constants.h"
+#include "core/rng.h"
 
 #include <cmath>
 #include <iostream>

@@ -9,8 +9,8 @@
 //   red->specular = color(1, 1, 1);
 //   red->phong_exponent = 50;
 //
-// In the renderer's material contract (engine/bsdf.h) it is a Lambertian base of albedo `diffuse`
-// under its mirror, conductor or dielectric lobe. The Whitted integrator (engine/whitted.h) adds
+// In the renderer's material contract (core/bsdf.h) it is a Lambertian base of albedo `diffuse`
+// under its mirror, conductor or dielectric lobe. The Whitted integrator (course/whitted.h) adds
 // the course's ambient and Blinn-Phong specular terms, which describe point-light shading rather
 // than a BSDF. For the path tracer a plain material with a specular reflectance is a blinn_phong
 // surface (material.h: diffuse plus a normalised glossy lobe of that reflectance and exponent, both
@@ -19,8 +19,8 @@
 // Colours here are in the course's units: 0..255 per channel on output, no gamma.
 
 #include "color.h"
-#include "engine/bsdf.h"
-#include "engine/vec3f.h"
+#include "core/bsdf.h"
+#include "core/vec3f.h"
 #include "material.h"
 
 namespace rt {

@@ -10,14 +10,14 @@
 
 #include "chi_square.h"
 
-#include <rtweekend/engine/material_compiler.h>
-#include <rtweekend/engine/rng.h>
+#include <rtweekend/scene/material_compiler.h>
+#include <rtweekend/core/rng.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/onb.h>
 #include <rtweekend/pdf.h>
 #include <rtweekend/quad.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/texture.h>
 #include <rtweekend/transform.h>

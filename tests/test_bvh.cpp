@@ -1,9 +1,9 @@
-// The BVH builder (rtweekend/engine/bvh.h): structural invariants checked by walking the tree
+// The BVH builder (rtweekend/scene/bvh.h): structural invariants checked by walking the tree
 // independently of the traversal: every primitive stored once, leaves of one kind and bounded
 // size, every box containing everything below it.
 
-#include <rtweekend/engine/bvh.h>
-#include <rtweekend/engine/rng.h>
+#include <rtweekend/scene/bvh.h>
+#include <rtweekend/core/rng.h>
 
 #include <doctest/doctest.h>
 

@@ -6,7 +6,7 @@
 
 #include <rtweekend/bvh.h>
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/quad.h>

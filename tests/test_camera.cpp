@@ -6,7 +6,7 @@
 // camera.h.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/sampler.h>
+#include <rtweekend/render/sampler.h>
 #include <rtweekend/hittable_list.h>
 
 #include <doctest/doctest.h>

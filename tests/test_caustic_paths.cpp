@@ -1,4 +1,4 @@
-// Caustics traced from the lights (engine/caustic_paths.h) against answers derived by hand:
+// Caustics traced from the lights (render/caustic_paths.h) against answers derived by hand:
 //   - camera_frame::connect inverts the camera: the point a pixel's ray meets is joined back to
 //     that pixel;
 //   - a Lambertian patch lit by a point light directly and through a mirror (the mirror's image of

@@ -1,4 +1,4 @@
-// The exact Fresnel equations (rtweekend/engine/fresnel.h) and the two materials built on them:
+// The exact Fresnel equations (rtweekend/core/fresnel.h) and the two materials built on them:
 // conductor(n, k, tint) and the absorbing, exact-Fresnel dielectric(ior, absorption).
 //
 // Reference values are worked out by hand in the comments (closed forms where the angles allow
@@ -328,7 +328,7 @@ TEST_CASE("conductor: invalid n, k, tint or absorption is a scene_error at compi
 }
 
 // ================================================================================================
-// The material contract (engine/bsdf.h)
+// The material contract (core/bsdf.h)
 
 TEST_CASE("conductor: the kernel mirrors exactly and weights by tint * Fr(cos) per channel") {
     compiled_material m;

@@ -1,11 +1,11 @@
-// OpenEXR images (rtweekend/io/exr.h through image_write.h and image_read.h): our float files read
+// OpenEXR images (rtweekend/image/exr.h through image_write.h and image_read.h): our float files read
 // back bit for bit; files written by the OpenEXR library itself in other layouts (half channels,
 // a data window away from the origin, luminance only) decode to hand-computed values; truncated,
 // garbage and oversized files give one scene_error naming the file. Without the library, .exr
 // gives the "not built" error instead.
 
-#include <rtweekend/io/image_read.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/image/image_read.h>
+#include <rtweekend/image/image_write.h>
 #include <rtweekend/measure/metrics.h>
 
 #include <doctest/doctest.h>

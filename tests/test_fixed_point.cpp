@@ -1,10 +1,10 @@
-// Fixed-point sample sums (rtweekend/engine/fixed_point.h) and what they buy the scheduler: sums
+// Fixed-point sample sums (rtweekend/render/fixed_point.h) and what they buy the scheduler: sums
 // that do not depend on the order or grouping of a pixel's samples, so that renders of parts of
 // the sample range, of the image's tiles, or of adaptive sampling's rounds split over processes
 // add up to the lone render exactly; and clamping, counted, instead of overflow.
 
-#include <rtweekend/engine/fixed_point.h>
-#include <rtweekend/engine/scheduler.h>
+#include <rtweekend/render/fixed_point.h>
+#include <rtweekend/render/scheduler.h>
 
 #include <doctest/doctest.h>
 

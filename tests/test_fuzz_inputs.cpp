@@ -6,13 +6,13 @@
 // harnesses (tests/fuzz), and the in-memory entry points and the command-line parser those
 // harnesses call.
 
-#include <rtweekend/engine/light_set.h>
-#include <rtweekend/engine/scene_compiler.h>
-#include <rtweekend/engine/whitted.h>
-#include <rtweekend/io/exr.h>
-#include <rtweekend/io/file.h>
-#include <rtweekend/io/image_read.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/scene/light_set.h>
+#include <rtweekend/scene/scene_compiler.h>
+#include <rtweekend/course/whitted.h>
+#include <rtweekend/image/exr.h>
+#include <rtweekend/core/file.h>
+#include <rtweekend/image/image_read.h>
+#include <rtweekend/image/image_write.h>
 #include <rtweekend/io/obj.h>
 #include <rtweekend/io/ply.h>
 #include <rtweekend/io/scene_file.h>

@@ -1,13 +1,13 @@
-// The glossy materials of the contract (rtweekend/engine/bsdf.h): plastic (a Lambertian base under
+// The glossy materials of the contract (rtweekend/core/bsdf.h): plastic (a Lambertian base under
 // a smooth dielectric coat) and blinn_phong (a Lambertian lobe plus a normalised Blinn-Phong
 // lobe), and the course scenes' mapping to blinn_phong. The generic contract checks (value ==
 // eval / pdf, chi-square about the normal, reciprocity, furnace) run on them in
 // test_material_contract.cpp; here, the values each model promises, derived by hand.
 
-#include <rtweekend/engine/bsdf.h>
-#include <rtweekend/engine/material_compiler.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/whitted.h>
+#include <rtweekend/core/bsdf.h>
+#include <rtweekend/scene/material_compiler.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/course/whitted.h>
 #include <rtweekend/material.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/whitted_material.h>

@@ -3,10 +3,10 @@
 // bit-for-bit image comparison, one material sample in the terms of an incoming ray.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/bsdf.h>
-#include <rtweekend/engine/image.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/bsdf.h>
+#include <rtweekend/image/image.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
-// image and the writers (rtweekend/io/image_write.h, rtweekend/color.h): byte-exact P3 text, PFM layout,
+// image and the writers (rtweekend/image/image_write.h, rtweekend/color.h): byte-exact P3 text, PFM layout,
 // PNG/BMP round trips through stb_image, and the error paths of write_image.
 
 #include <rtweekend/color.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/image/image_write.h>
 
 #include <doctest/doctest.h>
 

@@ -1,9 +1,9 @@
-// Reading images back (rtweekend/io/image_read.h): every writer round-trips, hand-written PPM and
+// Reading images back (rtweekend/image/image_read.h): every writer round-trips, hand-written PPM and
 // PFM files in each variant decode to hand-computed values, malformed files throw naming the
 // path, and the committed reference reads as the cover scene.
 
-#include <rtweekend/io/image_write.h>
-#include <rtweekend/io/image_read.h>
+#include <rtweekend/image/image_write.h>
+#include <rtweekend/image/image_read.h>
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
-// in_place_array (rtweekend/engine/in_place_array.h): objects built in place, in order, each
+// in_place_array (rtweekend/core/in_place_array.h): objects built in place, in order, each
 // destroyed exactly once, at fixed addresses.
 
-#include <rtweekend/engine/in_place_array.h>
+#include <rtweekend/core/in_place_array.h>
 
 #include <doctest/doctest.h>
 

@@ -5,8 +5,8 @@
 
 #include "test_helpers.h"
 
-#include <rtweekend/engine/path_tracer.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/render/path_tracer.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/rtweekend.h>
 

@@ -1,11 +1,11 @@
 // JPEG textures: libjpeg-turbo reads a JPEG's entropy-coded data through before stb_image decodes
-// it (io/jpeg_check.h). Sound files of every kind pass and decode to stb_image's pixels, exactly;
+// it (core/jpeg_check.h). Sound files of every kind pass and decode to stb_image's pixels, exactly;
 // damaged and cut-short ones are refused. The test JPEGs are encoded here by libjpeg itself, so
 // these cases need the library; without it (RTWEEKEND_HAVE_LIBJPEG unset) stb_image alone reads
 // JPEG files, as test_fuzz_inputs.cpp checks.
 
-#include <rtweekend/io/file.h>
-#include <rtweekend/io/jpeg_check.h>
+#include <rtweekend/core/file.h>
+#include <rtweekend/core/jpeg_check.h>
 #include <rtweekend/rtw_stb_image.h>
 
 #include <doctest/doctest.h>

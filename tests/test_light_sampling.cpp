@@ -1,4 +1,4 @@
-// Light sampling (rtweekend/engine/light_sampling.h) and the alias table (engine/alias_table.h).
+// Light sampling (rtweekend/scene/light_sampling.h) and the alias table (core/alias_table.h).
 //
 // For every sampler and configuration: (a) chi-square of the sampled points against the pdf
 // function integrated numerically over cells (of directions about the axis to a sphere's centre,
@@ -9,9 +9,9 @@
 // against closed forms, and its angles' arctangent against the double one; (e) the alias table's probabilities, exactly by enumerating every float
 // uniform and by chi-square; (f) the power heuristic's edge cases. Everything is seeded.
 
-#include <rtweekend/engine/alias_table.h>
-#include <rtweekend/engine/light_sampling.h>
-#include <rtweekend/engine/rng.h>
+#include <rtweekend/core/alias_table.h>
+#include <rtweekend/scene/light_sampling.h>
+#include <rtweekend/core/rng.h>
 
 #include <doctest/doctest.h>
 

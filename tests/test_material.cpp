@@ -1,5 +1,5 @@
 // Materials: Schlick's approximation, refraction (Snell's law), and the scattering of the three
-// book materials, both through the renderer's material contract (rtweekend/engine/bsdf.h: sample()) and
+// book materials, both through the renderer's material contract (rtweekend/core/bsdf.h: sample()) and
 // the book's virtual scatter() (rtweekend/material.h).
 //
 // Statistical checks use fixed seeds and 5-sigma bounds, derived in the comments: for a fraction
@@ -7,9 +7,9 @@
 // sqrt(N p (1 - p)); for a mean of N draws of a variable with variance V the standard error is
 // sqrt(V / N).
 
-#include <rtweekend/engine/bsdf.h>
+#include <rtweekend/core/bsdf.h>
 #include <rtweekend/material.h>
-#include <rtweekend/engine/rng.h>
+#include <rtweekend/core/rng.h>
 
 #include <doctest/doctest.h>
 

@@ -1,12 +1,12 @@
-// The material contract (rtweekend/engine/bsdf.h), for every built-in material: sample()'s value
+// The material contract (rtweekend/core/bsdf.h), for every built-in material: sample()'s value
 // is eval / pdf at the direction it draws; its directions follow pdf() (chi-square against
 // pdf() integrated over cells, and binomial tests of the delta lobes' choice probabilities);
 // eval is reciprocal where the model is; no material returns more energy than it receives (the
 // mean weight and the integral of eval against values derived by hand).
 
-#include <rtweekend/engine/bsdf.h>
-#include <rtweekend/engine/material_compiler.h>
-#include <rtweekend/engine/rng.h>
+#include <rtweekend/core/bsdf.h>
+#include <rtweekend/scene/material_compiler.h>
+#include <rtweekend/core/rng.h>
 #include <rtweekend/material.h>
 #include <rtweekend/whitted_material.h>
 

@@ -5,7 +5,7 @@
 #include <rtweekend/io/obj.h>
 #include <rtweekend/mesh.h>
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/io/scene_file.h>
 
 #include <doctest/doctest.h>

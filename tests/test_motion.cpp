@@ -9,8 +9,8 @@
 
 #include "test_helpers.h"
 
-#include <rtweekend/engine/path_tracer.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/render/path_tracer.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/rtweekend.h>
 
 #include <doctest/doctest.h>

@@ -7,8 +7,8 @@
 #include "test_helpers.h"
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/material.h>

@@ -1,4 +1,4 @@
-// Progress lines and interrupted renders (engine/scheduler.h): the progress text for hand-chosen
+// Progress lines and interrupted renders (render/scheduler.h): the progress text for hand-chosen
 // inputs, and renders stopped through render_settings::stop from inside a synthetic sample
 // function. The sample function returns (s, x, 1) for sample s of pixel (x, y): a pixel that took
 // samples 0..n-1 averages exactly ((n-1)/2, x, 1), so each pixel's mean says how many samples it
@@ -6,7 +6,7 @@
 // in order, each pixel of a tile row by row, a whole pass over the image before the next.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/scheduler.h>
+#include <rtweekend/render/scheduler.h>
 #include <rtweekend/hittable_list.h>
 
 #include <doctest/doctest.h>
@@ -150,7 +150,7 @@ TEST_CASE("render_samples: a flag raised before the render takes no sample, one 
 
 TEST_CASE("render_samples: the passes give each pixel the sum one pass would" * doctest::test_suite("threads")) {
     // Values whose floating-point sums depend on the order of additions: the image must be the
-    // mean of the samples' fixed-point values (engine/fixed_point.h), which no order changes:
+    // mean of the samples' fixed-point values (render/fixed_point.h), which no order changes:
     // each sample rounded to units of 2^-32 on its own, the integers added.
     render_settings s = one_thread(13);
     s.threads = 2;

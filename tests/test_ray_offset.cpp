@@ -1,7 +1,7 @@
-// offset_ray_origin (rtweekend/engine/ray_offset.h): spawned rays start just off the surface, on the
+// offset_ray_origin (rtweekend/core/ray_offset.h): spawned rays start just off the surface, on the
 // side the normal points to, by 256 float ulps per unit of normal (or 2^-16 per unit near 0).
 
-#include <rtweekend/engine/ray_offset.h>
+#include <rtweekend/core/ray_offset.h>
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
-// Random numbers (rtweekend/engine/rng.h): pcg32 against the reference implementation's published
+// Random numbers (rtweekend/core/rng.h): pcg32 against the reference implementation's published
 // output, per-sample generators, and random_double() inside and outside a render.
 
-#include <rtweekend/engine/rng.h>
+#include <rtweekend/core/rng.h>
 
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-// The samplers (rtweekend/engine/sampler.h): the Sobol sequence against its definition, the
+// The samplers (rtweekend/render/sampler.h): the Sobol sequence against its definition, the
 // stratification each sampler promises (one point per stratum, (0, m, 2)-nets, discrepancy
 // bounds derived below), chi-square tests of every pair of consecutive dimensions of a path,
 // determinism at any thread count, and an unbiased cover scene against the book's own reference
@@ -7,8 +7,8 @@
 #include "chi_square.h"
 #include "test_helpers.h"
 
-#include <rtweekend/engine/sampler.h>
-#include <rtweekend/io/image_read.h>
+#include <rtweekend/render/sampler.h>
+#include <rtweekend/image/image_read.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/rtweekend.h>
 

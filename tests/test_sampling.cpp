@@ -1,11 +1,11 @@
-// Sampling warps (rtweekend/engine/sampling.h): the unit circle, uniform sphere, uniform disk,
+// Sampling warps (rtweekend/core/sampling.h): the unit circle, uniform sphere, uniform disk,
 // cosine hemisphere.
 //
 // Moments are checked on a stratified grid of (u1, u2) (midpoints of an n x n grid), where the
 // sample mean approximates the integral deterministically with error O(1/n^2) for smooth
 // integrands, so tight tolerances are safe.
 
-#include <rtweekend/engine/sampling.h>
+#include <rtweekend/core/sampling.h>
 
 #include <doctest/doctest.h>
 

@@ -1,13 +1,13 @@
-// compile_scene (rtweekend/engine/scene_compiler.h): what the renderer builds from the book's world, and the
+// compile_scene (rtweekend/scene/scene_compiler.h): what the renderer builds from the book's world, and the
 // invalid input it must reject with scene_error.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/scene_compiler.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/sampling.h>
+#include <rtweekend/scene/scene_compiler.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/core/sampling.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/triangle.h>
 

@@ -1,8 +1,8 @@
-// The SIMD lanes of the leaf kernels (rtweekend/engine/simd.h): the fused multiply-adds against the
+// The SIMD lanes of the leaf kernels (rtweekend/core/simd.h): the fused multiply-adds against the
 // exactly rounded result worked out in double, the first-lanes mask against its definition, and
 // the smallest lane against a scalar scan, at this build's width.
 
-#include <rtweekend/engine/simd.h>
+#include <rtweekend/core/simd.h>
 
 #include <doctest/doctest.h>
 

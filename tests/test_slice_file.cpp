@@ -4,10 +4,10 @@
 // error line naming the file.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/fixed_point.h>
-#include <rtweekend/engine/path_tracer.h>
-#include <rtweekend/io/image_read.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/render/fixed_point.h>
+#include <rtweekend/render/path_tracer.h>
+#include <rtweekend/image/image_read.h>
+#include <rtweekend/image/image_write.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/io/slice_file.h>
 

@@ -1,12 +1,12 @@
 // Ray-sphere intersection: sphere::hit (the book's double API, rtweekend/sphere.h), sphere_roots,
-// and the renderer's float closest-hit query compiled_scene::intersect (rtweekend/engine/scene_compiler.h).
+// and the renderer's float closest-hit query compiled_scene::intersect (rtweekend/scene/scene_compiler.h).
 //
 // Reference values are analytic (worked out in the comments) or come from the textbook quadratic
 // formula evaluated in long double.
 
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/sphere.h>
 
 #include <doctest/doctest.h>

@@ -115,7 +115,7 @@ TEST_CASE("chi2 helper: incomplete gamma special cases and published critical va
 }
 
 // ================================================================================================
-// Direction and point samplers (rtweekend/engine/sampling.h)
+// Direction and point samplers (rtweekend/core/sampling.h)
 
 namespace {
 

@@ -1,20 +1,20 @@
 // Book 2's textures (rtweekend/texture.h, perlin.h, rtw_stb_image.h) and the engine's texture
-// table (engine/texture_table.h, surface_coordinates.h): every expected value below is worked
+// table (scene/texture_table.h, surface_coordinates.h): every expected value below is worked
 // out by hand from the definitions (cell parity, pixel index arithmetic, the sRGB curve, Perlin's
 // zero at lattice points), or compared between two independent routes through the renderer.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/scene_compiler.h>
-#include <rtweekend/engine/surface_coordinates.h>
-#include <rtweekend/engine/texture_table.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/scene/scene_compiler.h>
+#include <rtweekend/scene/surface_coordinates.h>
+#include <rtweekend/scene/texture_table.h>
 #include <rtweekend/hittable_list.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/image/image_write.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
 #include <rtweekend/perlin.h>
 #include <rtweekend/quad.h>
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/texture.h>
 

@@ -5,9 +5,9 @@
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/mesh.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/sampling.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/core/sampling.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/sphere.h>
 #include <rtweekend/triangle.h>
 

@@ -1,10 +1,10 @@
-// User-written hittables in the renderer (rtweekend/engine/user_shape_set.h): one that reports a
+// User-written hittables in the renderer (rtweekend/scene/user_shape_set.h): one that reports a
 // bounding box (book 2's bounding_box()) goes into the BVH, one that does not (a book-1 class)
 // is tested against every ray. Answers are checked against brute force over all shapes, in
 // double, and against closed-form sphere hits.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/sphere.h>

@@ -11,8 +11,8 @@
 
 #include <rtweekend/camera.h>
 #include <rtweekend/constant_medium.h>
-#include <rtweekend/engine/rng.h>
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/core/rng.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>
 #include <rtweekend/quad.h>

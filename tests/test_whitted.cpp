@@ -1,4 +1,4 @@
-// The Whitted renderer (rtweekend/engine/whitted.h) on small CENG795 XML scenes (tests/data/ceng795/)
+// The Whitted renderer (rtweekend/course/whitted.h) on small CENG795 XML scenes (tests/data/ceng795/)
 // whose pixels are worked out by hand here, from the format's rules
 // (shared/formats/ceng795-xml.md), not from the renderer's own helpers:
 //
@@ -13,7 +13,7 @@
 // except where a test is about the exact 8-bit encoding itself.
 
 #include <rtweekend/io/xml_scene.h>
-#include <rtweekend/engine/whitted.h>
+#include <rtweekend/course/whitted.h>
 
 #include <doctest/doctest.h>
 

@@ -10,10 +10,10 @@
 // the material it is given.
 
 #include "../mesh.h"
-#include "../scene_error.h"
-#include "file.h"
-#include "input_limits.h"
-#include "text_lines.h"
+#include "../core/scene_error.h"
+#include "../core/file.h"
+#include "../core/input_limits.h"
+#include "../core/text_lines.h"
 
 #include <algorithm>
 #include <array>

@@ -29,9 +29,9 @@
 // than written as inf or nan.
 
 #include "../mesh.h"
-#include "../scene_error.h"
-#include "file.h"
-#include "text_lines.h"
+#include "../core/scene_error.h"
+#include "../core/file.h"
+#include "../core/text_lines.h"
 
 #include <array>
 #include <charconv>

@@ -19,9 +19,9 @@
 // layout fails here rather than producing plausible timings), 0 <= tmin <= tmax, tmin finite,
 // tmax finite or +infinity. The count must match the file size exactly.
 
-#include "../engine/vec3f.h"
-#include "../scene_error.h"
-#include "file.h"
+#include "../core/vec3f.h"
+#include "../core/scene_error.h"
+#include "../core/file.h"
 
 #include <cerrno>
 #include <cmath>

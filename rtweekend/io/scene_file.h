@@ -64,12 +64,12 @@
 #include "../mesh.h"
 #include "../point_light.h"
 #include "../quad.h"
-#include "../scene_error.h"
+#include "../core/scene_error.h"
 #include "../sphere.h"
 #include "../texture.h"
 #include "../transform.h"
 #include "../triangle.h"
-#include "input_limits.h"
+#include "../core/input_limits.h"
 #include "obj.h"
 #include "ply.h"
 
@@ -105,13 +105,13 @@ struct scene_description {
 scene_description parse_scene(std::istream& in, const std::string& name);
 
 // Throws scene_error unless the image `cam` would render is within max_image_pixels
-// (io/input_limits.h): "the image is WxH = N pixels, more than the limit of ...". A side beyond
+// (core/input_limits.h): "the image is WxH = N pixels, more than the limit of ...". A side beyond
 // 65536 pixels, or an aspect ratio that is not positive, is left to the camera's own check.
 void check_camera_image_size(const camera& cam);
 
 // Reads a scene file. Besides parse_scene's checks (an empty file, or one of only comments, is
 // refused there), refuses a file that places no object in the world: it would render nothing but
-// the sky. And refuses an image larger than max_image_pixels (io/input_limits.h), before anything
+// the sky. And refuses an image larger than max_image_pixels (core/input_limits.h), before anything
 // is allocated.
 scene_description load_scene(const std::string& path);
 

@@ -1,7 +1,7 @@
 #pragma once
 // Sample slices: a render of samples [A, B) of every pixel, kept exactly, so that slices rendered
 // anywhere (other machines, other days) merge into the image the whole render would have made,
-// bit for bit (engine/fixed_point.h: the sums are integers, and integer addition does not care in
+// bit for bit (render/fixed_point.h: the sums are integers, and integer addition does not care in
 // which order or grouping the slices come).
 //
 //   render scene.txt --spp 64 --samples 0:32 -o a.pfm      (apps/render.cpp)
@@ -38,12 +38,12 @@
 // them, when each pixel is the mean of the samples the slices hold (a render of fewer samples,
 // not the whole render).
 
-#include "../engine/fixed_point.h"
-#include "../engine/image.h"
-#include "../scene_error.h"
-#include "file.h"
-#include "image_read.h"
-#include "image_write.h"
+#include "../render/fixed_point.h"
+#include "../image/image.h"
+#include "../core/scene_error.h"
+#include "../core/file.h"
+#include "../image/image_read.h"
+#include "../image/image_write.h"
 
 #include <algorithm>
 #include <cstdint>

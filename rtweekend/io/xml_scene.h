@@ -42,22 +42,22 @@
 // degenerate camera (zero gaze, up parallel to gaze, empty image plane, FovY outside (0, 180)),
 // a material or vertex id that does not exist (after vertexOffset; an id plus vertexOffset beyond
 // a 64-bit integer), a <Faces> list that is empty or not a multiple of 3, an <ImageResolution> of
-// more than 2^28 pixels (io/input_limits.h), an <ImageName> that is absolute or has a '..'
+// more than 2^28 pixels (core/input_limits.h), an <ImageName> that is absolute or has a '..'
 // component (image_name_problem below), a NUL byte anywhere in the file, and any problem of a PLY
 // file (its own message follows).
 //
 // The XML is parsed by pugixml (Debian's libpugixml-dev), which the rtweekend CMake target links.
 
 #include "../mesh.h"
-#include "../scene_error.h"
+#include "../core/scene_error.h"
 #include "../sphere.h"
 #include "../vec3.h"
 #include "../whitted_material.h"
-#include "../whitted_scene.h"
-#include "file.h"
-#include "input_limits.h"
+#include "../course/whitted_scene.h"
+#include "../core/file.h"
+#include "../core/input_limits.h"
 #include "ply.h"
-#include "text_lines.h"
+#include "../core/text_lines.h"
 
 #include <pugixml.hpp>
 

@@ -50,7 +50,7 @@
 //     Carlo rendering", Computer Graphics Forum 34(2), 2015 (STAR): error estimates filtered
 //     over image neighbourhoods.
 
-#include "../engine/vec3f.h"
+#include "../core/vec3f.h"
 
 #include <algorithm>
 #include <cmath>

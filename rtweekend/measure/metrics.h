@@ -32,9 +32,9 @@
 //
 // Images of different sizes, or empty ones, throw scene_error naming both sizes.
 
-#include "../io/image_read.h"
-#include "../io/image_write.h"
-#include "../scene_error.h"
+#include "../image/image_read.h"
+#include "../image/image_write.h"
+#include "../core/scene_error.h"
 
 #include <cmath>
 #include <cstddef>

@@ -1,4 +1,4 @@
-// libFuzzer harness: the image reader (rtweekend/io/image_read.h) on PPM (P3, P6), PFM, PNG, BMP
+// libFuzzer harness: the image reader (rtweekend/image/image_read.h) on PPM (P3, P6), PFM, PNG, BMP
 // and, when the build has OpenEXR, EXR files; the format is found from the first bytes, as
 // rt::read_image does.
 //
@@ -11,8 +11,8 @@
 #include "fuzz_support.h"
 #include "large_images.h"
 
-#include <rtweekend/io/image_read.h>
-#include <rtweekend/io/image_write.h>
+#include <rtweekend/image/image_read.h>
+#include <rtweekend/image/image_write.h>
 
 #include <cstddef>
 #include <cstdint>

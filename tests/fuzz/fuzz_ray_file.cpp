@@ -9,7 +9,7 @@
 
 #include "fuzz_support.h"
 
-#include <rtweekend/engine/scene_compiler.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/io/ray_file.h>
 #include <rtweekend/material.h>

@@ -18,7 +18,7 @@
 // Any exception other than rt::scene_error escapes the harness: libFuzzer reports it as a crash
 // (uncaught exception), because a loader must turn every problem into one clear scene_error.
 
-#include <rtweekend/scene_error.h>
+#include <rtweekend/core/scene_error.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // libFuzzer harness: image textures (rtweekend/rtw_stb_image.h), the files a scene's
 // `texture NAME image FILE` line names: PNG, JPEG, BMP, TGA, PNM and Radiance HDR through
 // stb_image, after the project's header checks (and, for JPEG, libjpeg-turbo's reading of the
-// entropy-coded data, when the build has it: io/jpeg_check.h).
+// entropy-coded data, when the build has it: core/jpeg_check.h).
 //
 // The input is an image file, decoded from memory by rt::rtw_image::decode. A texture it accepts
 // must have width x height pixels, each reachable by pixel_data() and linear() (corners, and

@@ -12,7 +12,7 @@
 #include "fuzz_support.h"
 #include "tiny_render.h"
 
-#include <rtweekend/engine/whitted.h>
+#include <rtweekend/course/whitted.h>
 #include <rtweekend/io/xml_scene.h>
 
 #include <cstddef>

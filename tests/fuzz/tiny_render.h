@@ -5,7 +5,7 @@
 // and larger are lowered, so invalid ones still reach the checks that refuse them.
 
 #include <rtweekend/camera.h>
-#include <rtweekend/whitted_scene.h>
+#include <rtweekend/course/whitted_scene.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,58 @@
+#pragma once
+// view_camera: the camera of the CENG795 course scenes (course/whitted_scene.h holds them; the
+// XML reader, io/xml_scene.h, fills them in), and the path tracer's camera_frame for one.
+
+#include "../core/scene_error.h"
+#include "../render/camera_frame.h"
+#include "../vec3.h"
+
+#include <cmath>
+#include <string>
+
+namespace rt {
+
+// A CENG795 camera: position e, gaze, up, the image plane's extent (left, right, bottom, top) at
+// distance near_distance along the gaze, and the image size. Pixel (i, j), j = 0 the top row,
+// is sampled once, at its centre (see whitted.h for the mapping).
+struct view_camera {
+    point3 position{0, 0, 0};
+    vec3 gaze{0, 0, -1};
+    vec3 up{0, 1, 0};
+    double left = -1, right = 1, bottom = -1, top = 1;
+    double near_distance = 1;
+    int width = 0, height = 0;
+    std::string image_name; // as the file gives it; .png or .ppm
+};
+
+// The frame of a CENG795 course camera (above): the image plane at near_distance along
+// the gaze, spanning [left, right] x [bottom, top]; pixel (i, j), j = 0 the top row, centred at
+// e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v, with w = -gaze,
+// u = unit(up x w), v = w x u. Throws scene_error for settings that make no image.
+inline camera_frame view_camera_frame(const view_camera& c) {
+    auto finite = [](const vec3& a) { return std::isfinite(a.x()) && std::isfinite(a.y()) && std::isfinite(a.z()); };
+    if (c.width <= 0 || c.height <= 0 || c.width > (1 << 16) || c.height > (1 << 16))
+        throw scene_error("image resolution must be between 1 and 65536, got " + std::to_string(c.width) + "x" +
+                          std::to_string(c.height));
+    if (!finite(c.position) || !finite(c.gaze) || !finite(c.up) ||
+        !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
+        throw scene_error("camera settings must be finite numbers");
+    const vec3 w = -unit_vector(c.gaze);
+    const vec3 u = unit_vector(cross(c.up, w));
+    const vec3 v = cross(w, u);
+    if (!finite(u) || !finite(w)) throw scene_error("camera gaze and up must be non-zero and not parallel");
+    const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;
+    camera_frame f;
+    f.width = c.width;
+    f.height = c.height;
+    f.position = c.position;
+    f.pixel00 = vec3f(-c.near_distance * w + c.left * u + c.top * v + 0.5 * (du + dv));
+    f.pixel_delta_u = vec3f(du);
+    f.pixel_delta_v = vec3f(dv);
+    return f;
+}
+
+} // namespace rt
+
+#ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::view_camera;
+#endif

@@ -1,0 +1,48 @@
+#pragma once
+// The course scenes' Whitted integrator (course/whitted.h) over the ranks of an MPI communicator:
+// every camera of the scene, each split by tiles (render/mpi_render.h says how a render is shared
+// and how failures are agreed on). Only MPI programs include this header.
+//
+//   std::vector<rt::whitted_render> images = rt::mpi::render_whitted(MPI_COMM_WORLD, scene, options);
+
+#include "../render/mpi_render.h"
+#include "whitted.h"
+#include "whitted_scene.h"
+
+#include <memory>
+#include <vector>
+
+namespace rt::mpi {
+
+// Every camera of a course scene with the Whitted integrator, each split by tiles. Rank 0 gets the
+// images, the others empty ones; statistics on every rank.
+std::vector<whitted_render> render_whitted(MPI_Comm comm, const whitted_scene& scene, const whitted_options& options);
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+inline std::vector<whitted_render> render_whitted(MPI_Comm comm, const whitted_scene& scene,
+                                                  const whitted_options& options) {
+    const detail::communicator_share share(comm, /*by_tiles=*/true);
+    whitted_options mine = options;
+    mine.share = &share;
+    mine.keep_sums = true;
+    mine.quiet = options.quiet || share.rank != 0;
+    // Compiling the scene may fail on one rank: agreed on before any camera is rendered.
+    std::unique_ptr<whitted_renderer> renderer =
+        together(comm, [&] { return std::make_unique<whitted_renderer>(scene, mine); });
+    render_settings settings; // the Whitted integrator's: one sample through each pixel's centre
+    settings.samples_per_pixel = 1;
+    settings.threads = options.threads;
+    settings.quiet = options.quiet;
+    std::vector<whitted_render> out;
+    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+        render_result r = detail::run_shared(comm, share, settings, [&](const render_settings&) {
+            whitted_render w = renderer->render(i);
+            return render_result{std::move(w.img), w.stats, std::move(w.sums)};
+        });
+        out.push_back({std::move(r.img), r.stats, pixel_sums()});
+    }
+    return out;
+}
+
+} // namespace rt::mpi

@@ -1,0 +1,520 @@
+#pragma once
+// Caustic paths traced from the lights: the part of the image that next-event estimation cannot
+// reach, found the other way round.
+//
+//   if (traces_caustics(scene)) ... caustic_splats splats(scene, frame, max_depth, seed, paths);
+//
+// A caustic is light that reaches a diffuse or glossy surface through glass or mirrors (light ->
+// one or more delta lobes -> surface). Next-event estimation cannot find it: the shadow ray stops
+// at the glass. The path tracer finds it only when a material-sampled ray happens to leave the
+// surface along the one chain of delta directions that ends on the light, which for a small
+// light is rare and bright: on book 3's Cornell box, the caustic under the glass sphere held a
+// third of the `nee` image's squared error at 64 spp (BENCHMARKS.md, section 11). With a point
+// light it cannot find it at all: no direction hits a point.
+//
+// Light tracing turns this round (Veach 1997, ch. 10, the bidirectional strategy with one camera
+// vertex; Arvo's backward ray tracing): a path starts at a point of a light, follows delta lobes,
+// and where it meets a surface with a density after at least one of them, it is joined to the
+// camera by a shadow ray and adds to the pixel it lands in (a splat). The light is focused by the
+// glass just as the path is, so every path that reaches the caustic contributes.
+//
+// The path tracer finds the same paths, and does better where the camera samples x densely (a
+// close look at a caustic): the two are weighed against each other by the power heuristic
+// (caustic_splats, below), so that light tracing and the path tracer (path_tracer.h,
+// caustic_state) each keep a share of every path
+//     camera -> x (seen directly, sampled by its non-delta part) -> k >= 1 delta vertices -> a light
+// and the shares sum to 1. Both sides stop at the same things: user-written shapes and materials,
+// volumes, smooth-shaded vertices (their folded lobes, path_tracer.h, are not symmetric under
+// reversal) and textured lights; the path is at most max_depth rays long, as the path tracer's
+// ray count allows.
+//
+// Caustics seen indirectly. The caustic under book 3's glass sphere lights the room in turn, and
+// the glass shows it again: light -> glass -> floor -> glass -> wall, the floor a Lambertian
+// "inner" vertex between two runs of delta vertices. A light path goes on from such a vertex by
+// its cosine, so the pattern above admits inner vertices, each between runs of delta vertices:
+//     camera -> x -> delta vertices -> (Lambertian -> delta vertices)* -> a light.
+// And a caustic reached past the camera's first vertex, camera -> ... -> v -> x -> delta vertices
+// -> (Lambertian -> delta vertices)* -> a light, v and x with densities, is joined the
+// bidirectional way (Veach 1997, ch. 10, with two or more camera vertices): each camera sample
+// traces a light path of its own (caustic_light_vertices), and each vertex v of the camera path
+// is joined to the points x it reached by a shadow ray. In book 3's Cornell box the first of these
+// held 40 % of the variance the pattern above left, and the second 48 % of what remained then
+// (BENCHMARKS.md, section 13). Since a
+// Lambertian vertex is left by its cosine from either end, the ratio of the two strategies'
+// densities stays the light path starts per unit of the light's area against the path tracer's
+// density at x, whatever the inner vertices (caustic_splats::deep_camera_path_weight).
+//
+// Reversing a delta chain. Mirrors and the exact Fresnel dielectric choose reflection and
+// refraction by the same probability from either end (reflection angles are equal; the exact
+// Fresnel reflectance is the same on both sides of a refraction). The book's glass uses Schlick's
+// approximation of the cosine on the side the path tracer arrives from, which differs across a
+// refraction; a light path refracting there is weighed by the ratio of the path tracer's
+// probability to its own, so both estimate the same image: the book's.
+//
+// Throughput. A light of radiance Le and area A emits its power from a uniform point, in a
+// cosine-distributed direction: each path carries Le pi A / P(light) (twice that for a two-sided
+// light, which picks a side); a point light of intensity I, uniform directions, I 4 pi / P(light).
+// At the surface point x, met from direction wi, joined to the lens along wo at distance d:
+//     splat = throughput * f(wo, wi) |cos_s(wi)| / |cos_g(wi)| * |cos_g(wo)| * importance
+// (importance: camera_frame::connect; cos_s against the shading normal, which eval includes;
+// cos_g against the geometric one, the measure the path arrived in).
+
+#include "../core/bsdf.h"
+#include "camera_frame.h"
+#include "../scene/compiled_scene.h"
+#include "../scene/light_set.h"
+#include "../core/in_place_array.h"
+#include "../core/rng.h"
+#include "../core/sampling.h"
+#include "../scene/surface_coordinates.h"
+#include "../scene/surface_hit.h"
+#include "../core/vec3f.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace rt {
+
+// Whether light tracing has caustics to find in `scene`: an untextured light, and a material with
+// a delta lobe, and no user-written code (which light paths cannot follow).
+inline bool traces_caustics(const compiled_scene& scene) {
+    if (scene.calls_user_code()) return false;
+    bool light = false;
+    for (const auto& l : scene.lights.lights) light = light || l.texture == UINT32_MAX;
+    if (!light) return false;
+    for (const compiled_material& m : scene.materials)
+        if (m.has_delta_lobe()) return true;
+    return false;
+}
+
+// A vertex that a caustic path may pass: a built-in surface (no user shape, no volume), shaded with
+// its geometric normal.
+inline bool caustic_vertex(const surface_hit& hit, const compiled_material& m) {
+    return !hit.user_shape && m.kind != material_kind::user && m.kind != material_kind::isotropic && !hit.smooth_shaded();
+}
+
+namespace detail {
+
+// The density of light paths' starting points on light l (chosen with probability pmf), per unit
+// of its area and per path: pmf / (sides * area), a two-sided light picking a side. 0 for a light
+// light paths do not start from (textured) or a degenerate one; infinite for a point light.
+inline float light_path_start_density(const light& l, float pmf) {
+    if (l.texture != UINT32_MAX || !(pmf > 0)) return 0.0f;
+    if (l.is_delta()) return std::numeric_limits<float>::infinity();
+    const float density = pmf / ((l.two_sided ? 2.0f : 1.0f) * l.area());
+    return std::isfinite(density) && density > 0 ? density : 0.0f;
+}
+
+// A box around every built-in shape whose material has a delta lobe (everything, when the scene
+// places instances): a light path whose first ray misses it meets no delta vertex first.
+inline box3f delta_shape_bounds(const compiled_scene& scene) {
+    box3f b;
+    if (scene.instances.count() > 0) {
+        const float inf = std::numeric_limits<float>::infinity();
+        b.grow(vec3f{-inf, -inf, -inf});
+        b.grow(vec3f{inf, inf, inf});
+        return b;
+    }
+    auto delta = [&](uint32_t material) { return scene.materials[material].has_delta_lobe(); };
+    auto ball = [&](const vec3f& c, float r) {
+        b.grow(c - vec3f{r, r, r});
+        b.grow(c + vec3f{r, r, r});
+    };
+    const sphere_set& sp = scene.spheres;
+    for (size_t i = 0; i < sp.count; ++i)
+        if (delta(sp.material[i])) ball({sp.x[i], sp.y[i], sp.z[i]}, sp.r[i]);
+    const moving_sphere_set& ms = scene.moving_spheres;
+    for (size_t i = 0; i < ms.count; ++i)
+        if (delta(ms.material[i])) {
+            ball(ms.center(uint32_t(i), 0.0f), ms.r[i]);
+            ball(ms.center(uint32_t(i), 1.0f), ms.r[i]);
+        }
+    const quad_set& qs = scene.quads;
+    for (size_t i = 0; i < qs.count; ++i)
+        if (delta(qs.material[i])) {
+            const vec3f q = qs.corner(uint32_t(i)), u = qs.edge_u(uint32_t(i)), v = qs.edge_v(uint32_t(i));
+            for (const vec3f& p : {q, q + u, q + v, q + u + v}) b.grow(p);
+        }
+    const triangle_set& ts = scene.triangles;
+    for (size_t i = 0; i < ts.count; ++i)
+        if (delta(ts.material[i]))
+            for (int k = 0; k < 3; ++k)
+                b.grow(vec3f{ts.vertex[3 * k][i], ts.vertex[3 * k + 1][i], ts.vertex[3 * k + 2][i]});
+    if (b.empty()) return b;
+    // Grown by a margin, so that rounding in the slab test below never misses a shape.
+    const vec3f pad = 1e-4f * (b.hi - b.lo) + vec3f{1e-3f, 1e-3f, 1e-3f} +
+                      1e-5f * vec3f{std::fabs(b.lo.x) + std::fabs(b.hi.x), std::fabs(b.lo.y) + std::fabs(b.hi.y),
+                                    std::fabs(b.lo.z) + std::fabs(b.hi.z)};
+    b.lo = b.lo - pad;
+    b.hi = b.hi + pad;
+    return b;
+}
+
+// Whether the ray (from its origin on, any distance) may meet the box: a slab test in which an
+// infinite box, or a NaN from a direction along an axis, counts as a meeting.
+inline bool may_meet(const box3f& b, const ray3f& r) {
+    if (b.empty()) return false;
+    float t0 = 0, t1 = std::numeric_limits<float>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const float inv = 1.0f / r.dir[a];
+        float near = (b.lo[a] - r.origin[a]) * inv, far = (b.hi[a] - r.origin[a]) * inv;
+        if (near > far) std::swap(near, far);
+        if (near > t0) t0 = near; // a NaN compares false: no narrowing
+        if (far < t1) t1 = far;
+    }
+    return !(t0 > t1);
+}
+
+} // namespace detail
+
+// One light path (the numbers from rng): splat(x, y, value, light, camera_density) for each pixel
+// it adds to, with the index of the light it started from and the camera's density at the surface
+// point it was joined from (caustic_splats::camera_density); rays counts the rays traced.
+// start_density: per light, detail::light_path_start_density.
+template <class Splat>
+void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth,
+                        const std::vector<float>& start_density, pcg32& rng, Splat&& splat, uint64_t& rays);
+
+// The points a camera sample's own light path reaches past delta vertices, for joining the
+// camera path's vertices to (caustic_splats::deep_light_path_weight): the light path starts as
+// trace_caustic_path's do, goes through delta vertices of materials without a density, and stops
+// at the first surface with a density; if that came after one or more of them, it is a point x
+// kept here, and if it is Lambertian the path goes on by its cosine, at most `capacity` times.
+struct caustic_light_vertices {
+    static constexpr int capacity = 3;
+    struct vertex {
+        vec3f p, normal, shading_normal; // as surface_hit's: the normals facing the arriving path
+        bool front_face = true;
+        vec3f wi;                        // back along the light path, towards the light
+        vec3f throughput;                // what the light path carries on arrival
+        uint32_t material;               // its index in the compiled scene's table
+        vec3f colour;                    // a textured material's colour at p
+        int vertices;                    // the path's vertices between the light and p
+    };
+    // Built as the path reaches them: a camera path of a render without caustics holds an empty
+    // one, whose room (252 bytes) is never written and so never takes cache lines.
+    in_place_array<vertex, capacity> at;
+    uint32_t light = 0; // the light the path started from
+};
+
+class caustic_splats;
+
+// The light path of a camera sample in a render whose light tracing `splats` sets up: its numbers
+// from u, at the camera path's time, at most most_vertices vertices between the light and a kept
+// point, appended to `out` (empty on entry).
+template <class Uniform>
+void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_splats& splats, int most_vertices,
+                                  Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays);
+
+// The light paths of a render, as the scheduler's splat work (scheduler.h,
+// render_samples_with_splats): for each sample index, `paths` light paths (rounded to a whole
+// number, at least 1), each splatting 1/paths of its value, so that a pixel's mean is its camera
+// samples' plus the mean of the light paths' splats. Path k of sample index s draws from its own
+// generator, so the image is the same at any thread count.
+//
+// Both strategies find the paths camera -> x -> delta vertices -> light of an area light; each
+// weighs them by the power heuristic (Veach 1997, ch. 9), so that every pixel gets whichever
+// does better there. Per camera sample of the pixel, the path tracer draws x with area density
+// p_c(x) = importance * |cos_x| (camera_frame::connect) and leaves x by its cosine; light tracing
+// draws the point on light l with area density P(l) / (sides * A_l) per path, and leaves it by its
+// cosine, `paths` times per sample. The delta vertices between are chosen alike from both ends,
+// and the two cosine-weighted ray bundles have the same extent (etendue is conserved through
+// mirrors and refraction in and out of glass), so their densities for the same path are in the
+// ratio
+//     r = light / camera = paths * P(l) / (sides * A_l * p_c(x)),
+// the number of light-path starts per unit of the light's area against the camera samples per
+// unit area at x. The path tracer keeps 1 / (1 + r^2) of such a path, light tracing
+// r^2 / (1 + r^2). (The power heuristic rather than the balance heuristic: zoomed in on book 3's
+// caustic, where r is near 1, it gave 16 % less variance, the camera paths' Sobol numbers being
+// better stratified than the light paths' own; on the whole box the two were equal.)
+// Seen wide, x's pixel covers a large patch and light tracing takes nearly all (book 3's Cornell
+// box at 300x300: r about 12 on the floor); zoomed in on a caustic the camera samples it
+// densely and the path tracer does. A caustic of a point light goes to light tracing in full: no
+// camera path can end on a point (without light tracing it is missing from the image).
+class caustic_splats {
+  public:
+    static constexpr int64_t paths_per_job = 4096;
+
+    caustic_splats(const compiled_scene& scene, const camera_frame& frame, int max_depth, uint64_t seed, double paths)
+        : scene_(scene), frame_(frame), max_depth_(max_depth), seed_(mix64(seed ^ 0x6c1d5e0b7f4a2c93ULL)),
+          paths_(std::max<int64_t>(1, std::llround(std::min(paths, 1e15)))) {
+        // Per light: light-path starts per unit area and per path (detail::light_path_start_density).
+        start_density_.resize(scene.lights.lights.size(), 0.0f);
+        for (uint32_t l = 0; l < start_density_.size(); ++l)
+            start_density_[l] = detail::light_path_start_density(scene.lights.lights[l], scene.lights.pick_pmf(l));
+    }
+
+    // A box around the shapes with a delta lobe (detail::delta_shape_bounds): a light path whose
+    // first ray misses it has nothing to find (trace_caustic_light_vertices).
+    const box3f& delta_bounds() const { return delta_bounds_; }
+
+    int jobs_per_sample() const { return int((paths_ + paths_per_job - 1) / paths_per_job); }
+
+    // The path tracer's area density at x per camera sample, seen from lens point `lens`, x's
+    // geometric normal `normal`: 0 where the camera cannot be joined to x (connect fails), which
+    // light tracing cannot then reach.
+    float camera_density(const vec3f& x, const vec3f& lens, const vec3f& normal) const {
+        camera_frame::connection c;
+        if (!frame_.connect(x, lens, c)) return 0.0f;
+        return c.importance * std::fabs(dot(normal, c.dir));
+    }
+    // The power-heuristic weights of a path whose camera vertex has density camera_density and
+    // whose light is l: the path tracer's and light tracing's, which sum to 1.
+    float camera_path_weight(uint32_t l, float camera_density) const {
+        return camera_share(float(paths_) * start_density_[l], camera_density);
+    }
+    float light_path_weight(uint32_t l, float camera_density) const { return 1.0f - camera_path_weight(l, camera_density); }
+
+    // The same two weights for a path joined deeper: camera -> ... -> v -> x -> delta vertices
+    // (and Lambertian inner vertices between runs of them) -> light l, v and x with densities, x
+    // past the camera's first vertex. The path tracer finds it by sampling x's lobe; light tracing,
+    // by joining v to the point x of the camera sample's own light path (one per camera sample,
+    // caustic_light_vertices). As above, the ratio of their densities is the light path starts per
+    // unit of the light's area against the path tracer's area density at x, which given v is
+    // x_density = pdf_v(v -> x) |cos_x| / d^2.
+    float deep_camera_path_weight(uint32_t l, float x_density) const { return camera_share(start_density_[l], x_density); }
+    float deep_light_path_weight(uint32_t l, float x_density) const { return 1.0f - deep_camera_path_weight(l, x_density); }
+
+    template <class Add, class Totals>
+    void run(int s, int job, Add&& add, Totals& totals) const {
+        const float share = float(1.0 / double(paths_));
+        const int64_t end = std::min(paths_, int64_t(job + 1) * paths_per_job);
+        for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
+            pcg32 rng = sample_rng(seed_, uint64_t(k), uint64_t(s));
+            trace_caustic_path(scene_, frame_, max_depth_, start_density_, rng,
+                               [&](int x, int y, const vec3f& value, uint32_t l, float camera_density) {
+                                   const float w = light_path_weight(l, camera_density);
+                                   if (w > 0) add(x, y, value * (share * w));
+                               },
+                               totals.rays);
+        }
+    }
+
+    // Light-path starts per unit of light l's area, per path (detail::light_path_start_density),
+    // worked out once per render.
+    float start_density(uint32_t l) const { return start_density_[l]; }
+
+  private:
+    // The path tracer's power-heuristic share of a path that light tracing makes with density
+    // `light` and the path tracer with density `camera`, per unit of the same measure.
+    static float camera_share(float light, float camera) {
+        if (!(light > 0) || !(camera > 0)) return 1.0f; // light tracing cannot make it
+        if (std::isinf(light)) return 0.0f;               // a point light: the path tracer cannot
+        const float r = light / camera;
+        return 1.0f / (1.0f + r * r);
+    }
+
+    const compiled_scene& scene_;
+    const camera_frame& frame_;
+    int max_depth_;
+    uint64_t seed_;
+    int64_t paths_;
+    std::vector<float> start_density_;
+    box3f delta_bounds_ = detail::delta_shape_bounds(scene_);
+};
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+// The probability the path tracer would have chosen a refraction, seen from the side the light
+// path leaves to, over the probability the light path chose it with: 1 but for the book's Schlick
+// glass (see the top). n: the unit normal; wo: back along the arriving light path, on the side
+// `front` says; s: the refraction drawn.
+inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, const vec3f& wo, bool front,
+                                    const material_sample& s) {
+    if (m.kind != material_kind::dielectric || s.sampled != delta_transmission) return 1.0f;
+    auto transmitted = [&](float cos_theta, bool front_face) {
+        const float ri = front_face ? 1.0f / m.refraction_index : m.refraction_index;
+        cos_theta = fmin_inline(cos_theta, 1.0f);
+        const float sin_theta = sqrt_f(fmax_inline(0.0f, 1.0f - cos_theta * cos_theta));
+        if (ri * sin_theta > 1.0f) return 0.0f;
+        return 1.0f - schlick_reflectance(cos_theta, ri);
+    };
+    const float mine = transmitted(std::fabs(dot(wo, n)), front);
+    const float theirs = transmitted(std::fabs(dot(s.wi, n)), !front);
+    return mine > 0 ? theirs / mine : 0.0f;
+}
+
+// Where a light path starts: a point of light l (chosen with probability pmf; density, its
+// light_path_start_density, worked out once per render), a direction, and the throughput the path
+// carries. False when l is textured (left to the path tracer) or degenerate (density 0).
+template <class Uniform>
+bool start_light_path(const light& l, float pmf, float density, Uniform& u, ray3f& r, vec3f& throughput) {
+    if (!(density > 0)) return false;
+    const auto [u1, u2] = draw_2d(u);
+    if (l.kind == light_kind::point) {
+        r.origin = l.p0;
+        r.dir = sample_unit_sphere(u1, u2);
+        throughput = l.emission * (4.0f * pi_f / pmf);
+        return true;
+    }
+    vec3f y, n;
+    switch (l.kind) {
+    case light_kind::sphere:
+        n = sample_unit_sphere(u1, u2);
+        y = l.p0 + l.radius * n;
+        break;
+    case light_kind::quad:
+        n = normalize(cross(l.p1, l.p2));
+        y = l.p0 + u1 * l.p1 + u2 * l.p2;
+        break;
+    case light_kind::triangle: {
+        n = normalize(cross(l.p1 - l.p0, l.p2 - l.p0));
+        const barycentric b = uniform_triangle_point(u1, u2);
+        y = b.b0 * l.p0 + b.b1 * l.p1 + b.b2 * l.p2;
+        break;
+    }
+    case light_kind::point: break;
+    }
+    if (l.two_sided && u.next_float() < 0.5f) n = -n;
+    const auto [v1, v2] = draw_2d(u);
+    r.dir = sample_cosine_direction(n, v1, v2);
+    r.origin = offset_ray_origin(y, n);
+    throughput = l.emission * (pi_f / density); // Le cos / (density cos / pi)
+    return true;
+}
+
+// One step of a light path: the surface r meets (hit), its material (a textured one's copy with
+// its colour, in looked_up) and the throughput past absorbing glass; nullptr where the path ends:
+// it escapes, or meets a light or what light paths do not pass (caustic_vertex).
+inline const compiled_material* light_path_step(const compiled_scene& scene, const ray3f& r, surface_hit& hit,
+                                                compiled_material& looked_up, vec3f& throughput, uint64_t& rays) {
+    ++rays;
+    if (!scene.intersect(r, hit)) return nullptr;
+    const compiled_material& stored = scene.materials[hit.material];
+    if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
+    const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
+    if (!caustic_vertex(hit, m) || m.kind == material_kind::diffuse_light) return nullptr;
+    if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+    return &m;
+}
+
+} // namespace detail
+
+template <class Splat>
+void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth,
+                        const std::vector<float>& start_density, pcg32& rng, Splat&& splat, uint64_t& rays) {
+    float pmf = 0;
+    const uint32_t chosen = scene.lights.pick(rng.next_float(), pmf);
+    if (chosen == light_set::none) return;
+    ray3f r;
+    vec3f throughput;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, start_density[chosen], rng, r, throughput)) return;
+    r.tmin = 0;
+    r.tmax = std::numeric_limits<float>::infinity();
+    if (scene.has_motion) r.time = rng.next_float();
+    surface_hit hit;
+    compiled_material looked_up;
+    // vertices: the path's vertices before this one; since_delta: of them, the delta vertices
+    // since the light or the last vertex with a density.
+    for (int vertices = 0, since_delta = 0;; ++vertices) {
+        const compiled_material* met = detail::light_path_step(scene, r, hit, looked_up, throughput, rays);
+        if (!met) return;
+        const compiled_material& m = *met;
+        const vec3f wi = -r.dir; // back towards the light
+
+        // Light straight from the light or from an inner vertex is not a caustic.
+        if (m.has_non_delta_lobe() && since_delta > 0) {
+            // Joined to the camera: a point of the lens, and a shadow ray to it.
+            vec3f lens{0, 0, 0};
+            if (frame.thin_lens) {
+                const auto [l1, l2] = draw_2d(rng);
+                const vec3f d = sample_unit_disk(l1, l2);
+                lens = d.x * frame.defocus_disk_u + d.y * frame.defocus_disk_v;
+            }
+            camera_frame::connection c;
+            if (frame.connect(hit.p, lens, c)) {
+                // The surface as the camera sees it: normals on the camera's side.
+                const vec3f wo = -c.dir;
+                surface_hit seen = hit;
+                if (dot(wo, hit.normal) < 0) {
+                    seen.normal = -hit.normal;
+                    seen.shading_normal = -hit.shading_normal;
+                    seen.front_face = !hit.front_face;
+                }
+                const vec3f f = m.eval(wo, wi, shading_point{seen.shading_normal, seen.front_face});
+                const float cos_in = std::fabs(dot(hit.normal, wi)), cos_out = std::fabs(dot(hit.normal, wo));
+                if (!detail::is_black(f) && cos_in > 0) {
+                    const float density = c.importance * cos_out; // the camera's, at x
+                    const vec3f value = throughput * f * (density / cos_in);
+                    ++rays;
+                    if (!detail::is_black(value) &&
+                        !scene.occluded(detail::spawn_ray(seen, wo, c.distance * (1.0f - 1e-4f))))
+                        splat(int(c.px), int(c.py), value, chosen, density);
+                }
+            }
+        }
+        // One more vertex would make the path tracer's path longer than max_depth rays.
+        if (vertices + 1 > max_depth - 2) return;
+        material_sample s;
+        const shading_point sp{hit.shading_normal, hit.front_face};
+        if (!m.sample(wi, sp, rng, s)) return;
+        if (s.is_delta()) {
+            ++since_delta;
+        } else {
+            // An inner vertex (see the top): a Lambertian surface past delta vertices, left by its
+            // cosine towards more of them.
+            if (m.kind != material_kind::lambertian || since_delta == 0) return;
+            since_delta = 0;
+        }
+        throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
+        if (detail::is_black(throughput)) return;
+        r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
+    }
+}
+
+template <class Uniform>
+void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_splats& splats, int most_vertices,
+                                  Uniform& u, float time, caustic_light_vertices& out, uint64_t& rays) {
+    float pmf = 0;
+    const uint32_t chosen = scene.lights.pick(u.next_float(), pmf);
+    if (chosen == light_set::none) return;
+    out.light = chosen;
+    ray3f r;
+    vec3f throughput;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, splats.start_density(chosen), u, r, throughput))
+        return;
+    r.tmin = 0;
+    r.tmax = std::numeric_limits<float>::infinity();
+    r.time = time;
+    // Most light paths meet a surface with a density first, where they stop: those that cannot
+    // meet a delta vertex first are not traced at all.
+    if (!detail::may_meet(splats.delta_bounds(), r)) return;
+    surface_hit hit;
+    compiled_material looked_up;
+    for (int vertices = 0, since_delta = 0; vertices <= most_vertices; ++vertices) {
+        const compiled_material* met = detail::light_path_step(scene, r, hit, looked_up, throughput, rays);
+        if (!met) return;
+        const compiled_material& m = *met;
+        const vec3f wi = -r.dir; // back towards the light
+        if (m.has_non_delta_lobe()) {
+            if (since_delta == 0) return; // light no delta vertex has bent: not a caustic
+            caustic_light_vertices::vertex& x = out.at.emplace_back();
+            x.p = hit.p;
+            x.normal = hit.normal;
+            x.shading_normal = hit.shading_normal;
+            x.front_face = hit.front_face;
+            x.wi = wi;
+            x.throughput = throughput;
+            x.material = hit.material;
+            x.colour = m.albedo;
+            x.vertices = vertices;
+            if (m.kind != material_kind::lambertian || out.at.size() == caustic_light_vertices::capacity) return;
+            since_delta = 0;
+        } else {
+            ++since_delta;
+        }
+        material_sample s;
+        const shading_point sp{hit.shading_normal, hit.front_face};
+        if (!m.sample(wi, sp, u, s)) return;
+        throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
+        if (detail::is_black(throughput)) return;
+        r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
+    }
+}
+
+} // namespace rt

@@ -1,0 +1,28 @@
+#pragma once
+// environment: the radiance a ray that leaves the scene sees, by its direction. The book's sky
+// (white at the horizon to light blue overhead), or a constant background colour.
+
+#include "../core/vec3f.h"
+
+namespace rt {
+
+struct environment {
+    bool constant = false; // false: the book's sky
+    vec3f color{0, 0, 0};  // the constant background
+    // The course scenes' background (CENG795): seen by camera rays that miss, black to every
+    // other ray, so it lights nothing.
+    bool camera_rays_only = false;
+
+    static environment sky() { return {}; }
+    static environment uniform(const vec3f& c) { return {true, c}; }
+    static environment backdrop(const vec3f& c) { return {true, c, true}; }
+
+    vec3f eval(const vec3f& unit_dir) const {
+        if (constant) return color;
+        // The book's sky: lerp(white, (0.5, 0.7, 1.0), (y + 1) / 2).
+        float a = 0.5f * (unit_dir.y + 1.0f);
+        return (1.0f - a) * vec3f{1, 1, 1} + a * vec3f{0.5f, 0.7f, 1.0f};
+    }
+};
+
+} // namespace rt

@@ -1,0 +1,559 @@
+#pragma once
+// The path tracer: the book's ray_color as a loop, over the compiled scene.
+//
+//   render_result r = path_trace(world, frame, environment::sky(), settings);
+//
+// The world is first compiled into a flat scene (scene_compiler.h); then the scheduler
+// (scheduler.h) takes settings.samples_per_pixel samples per pixel, each one camera ray from
+// `frame` followed through at most settings.max_depth scattering events. A ray that leaves the
+// scene gathers the environment's radiance times the product of the materials' weights.
+
+#include "../hittable.h"
+#include "camera_frame.h"
+#include "caustic_paths.h"
+#include "../scene/compiled_scene.h"
+#include "environment.h"
+#include "../core/in_place_array.h"
+#include "../scene/light_sampling.h"
+#include "../scene/light_set.h"
+#include "../core/ray_offset.h"
+#include "render_settings.h"
+#include "../core/rng.h"
+#include "sampler.h"
+#include "../scene/scene_compiler.h"
+#include "scheduler.h"
+#include "../scene/surface_coordinates.h"
+#include "user_material.h"
+
+#include <chrono>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+// path_trace is defined below inline, as a header-only library's functions are. A program whose
+// files would each compile it again can compile it once instead: one file defines
+// RTWEEKEND_PATH_TRACER_INLINE as nothing before including this header (a definition that is not
+// inline), and the others define RTWEEKEND_LINK_PATH_TRACER (the declarations alone). This
+// project's apps and tests do so (apps/path_tracer_once.cpp), as it is most of their build time.
+#ifndef RTWEEKEND_PATH_TRACER_INLINE
+#define RTWEEKEND_PATH_TRACER_INLINE inline
+#endif
+
+namespace rt {
+
+// Renders `world` through `frame` with the path tracer. Throws scene_error on bad input.
+render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+                         const render_settings& settings);
+// The same with point lights, which only light sampling finds (the bsdf estimator never does).
+render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+                         const render_settings& settings, const std::vector<point_light>& point_lights);
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+// The shadow ray from `hit` to a light's sampled point y (direction wi from hit.p). Both ends are
+// pushed off their surfaces as spawned rays are (ray_offset.h): it starts where a ray leaving
+// towards y starts (spawn_ray) and ends short of y pushed off the light towards that start (an
+// area light; a point light's y is no surface), as pbrt-v4's SpawnRayTo does. Aimed along wi
+// from the pushed start instead, it ran beside the line through y, and near a sphere light's
+// silhouette it met the sphere up to ~sqrt(2 r push) before y, beyond any relative margin: the
+// light shadowed itself. From a thousand units away nee lost all of a sphere light's direct
+// light that way, and the sphere room 1.75 % of its image (tests/test_lights.cpp).
+inline ray3f shadow_ray(const surface_hit& hit, const light_choice& lc, bool in_volume) {
+    ray3f r = spawn_ray(hit, lc.wi, 0, in_volume);
+    vec3f end = lc.y;
+    if (!lc.delta) end = offset_ray_origin(lc.y, dot(r.origin - lc.y, lc.n) >= 0 ? lc.n : -lc.n);
+    const vec3f to = end - r.origin;
+    const float distance = length(to);
+    r.dir = to / distance;
+    r.tmax = distance * (1.0f - 1e-4f);
+    return r;
+}
+
+// Russian roulette (nee only): past a number of scattering events, a path whose throughput t
+// (its largest channel) has fallen below roulette_weight goes on with probability
+// q = t / roulette_weight and is weighed by 1/q when it does, so the mean is unchanged (Arvo and
+// Kirk 1990; pbrt, 4th ed., 14.1.5) and every survivor carries roulette_weight. pbrt and the
+// first version here used 1: survivors then carry the full weight of a camera ray, and in a
+// closed room a caustic reached three to nine bounces deep (diffuse -> glass -> glass -> light)
+// became a firefly of weight 1. With 1/2, fewer paths die in the first bounces and a caustic
+// found deep counts half (BENCHMARKS.md, section 8, has the figures: 1.55x the efficiency on
+// book 3's Cornell box). Roulette starts after two events in a scene with emitters (closed
+// rooms, long paths: on book 3's Cornell box, 1.26x the efficiency of starting after five) and
+// after five in a scene lit by the sky alone (paths escape soon; starting after three cost the
+// cover scene 5 % of its efficiency).
+inline constexpr float roulette_weight = 0.5f;
+inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 : 2; }
+
+// The material at a path vertex, as the estimators ask it: a built-in material through the
+// contract (bsdf.h), a user's through its virtual functions (user_material.h).
+//
+// Smooth shading. A smooth mesh's interpolated normal ns (the shading normal) tilts away from the
+// triangle's own normal ng, so a lobe drawn about ns can dip below the surface, where a ray
+// would pass through it: rays lost (dark facets) or leaking. The rule here keeps every bit of
+// energy instead: a direction below the geometric surface is mirrored through it,
+// w -> w - 2 (w . ng) ng, and the material seen by the path is the folded one,
+//   f'(wi) = f(wi) + f(mirror(wi))   (wi above the surface; 0 below), pdf' likewise,
+// which reflects exactly what f reflects over the whole sphere (the mirror maps the lower half
+// onto the upper one and keeps solid angle). A Lambertian surface under shading normals thus
+// weighs every sample by its albedo exactly, as it does without them: a white furnace stays
+// white and no facet turns black. Delta lobes are mirrored back to the side they belong to
+// (reflection: the incoming side; refraction: the other). Light sampling and multiple importance
+// sampling see the same folded f' and pdf'. User materials get the shading normal as is.
+template <bool UserMaterials>
+struct vertex_material {
+    const compiled_material& m;
+    shading_point sp;
+    vec3f wo;
+    const user_material_hit* user; // set for a user's material, which has scattered already
+    vec3f ng;                      // the geometric normal, on wo's side
+    bool folded = false;           // shading normal differs from ng: fold as above
+
+    bool is_user() const { return UserMaterials && user; }
+    bool has_density() const { return is_user() ? user->has_density() : m.has_non_delta_lobe(); }
+    vec3f mirror(const vec3f& w) const { return w - (2.0f * dot(w, ng)) * ng; }
+    vec3f eval(const vec3f& wi) const {
+        if (is_user()) return user->eval(wi);
+        if (!folded) return m.eval(wo, wi, sp);
+        if (!(dot(wi, ng) > 0)) return {0, 0, 0};
+        return m.eval(wo, wi, sp) + m.eval(wo, mirror(wi), sp);
+    }
+    float pdf(const vec3f& wi) const {
+        if (is_user()) return user->pdf(wi);
+        if (!folded) return m.pdf(wo, wi, sp);
+        if (!(dot(wi, ng) > 0)) return 0;
+        return m.pdf(wo, wi, sp) + m.pdf(wo, mirror(wi), sp);
+    }
+    template <class Uniform>
+    bool sample(Uniform& u, material_sample& s) const {
+        if (is_user()) return user->sample(s);
+        if (!m.sample(wo, sp, u, s)) return false;
+        if (!folded) return true;
+        if (s.is_delta()) {
+            const float side = dot(s.wi, ng);
+            if (s.sampled == delta_transmission ? side > 0 : side < 0) s.wi = mirror(s.wi);
+            return true;
+        }
+        if (dot(s.wi, ng) < 0) s.wi = mirror(s.wi);
+        const float density = pdf(s.wi);
+        if (!(density > 0)) return false;
+        s.value = eval(s.wi) * (1.0f / density);
+        s.pdf = density;
+        return true;
+    }
+};
+
+// One path from the camera, estimated with E, taken a bounce at a time: ray() is the ray to trace
+// next, advance(found, hit) takes what it met, and radiance_so_far() is what the path carries,
+// all of it once done().
+// Materials see the shading normal (a smooth mesh's interpolated one, folded as vertex_material
+// says; else the geometric normal). Each decision draws from its own dimension of the sampler
+// (sampler.h). With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x,
+// its non-delta lobe sampled -> one or more delta vertices, with Lambertian vertices between runs
+// of them -> a light; and the same past the first vertex, which light tracing finds by joining the
+// path's vertices to the sample's own light path) count here by the path tracer's share.
+//
+// The path tracer advances a batch's paths side by side, a bounce of each in turn: their rays
+// are traced together (as packets, compiled_scene::intersect_batch), and the processor overlaps
+// one path's steps with another's where a single path would wait on each of its own in turn.
+template <path_estimator E, bool UserMaterials>
+class camera_path {
+  public:
+    camera_path(const compiled_scene& scene, const environment& env, const ray3f& camera_ray, int max_depth,
+                pixel_sampler& ps, uint64_t& rays, const caustic_splats* caustics = nullptr)
+        : scene(scene), env(env), lights(scene.lights), roulette_start(roulette_depth(scene.lights)),
+          max_depth(max_depth), ps(ps), rays(rays), caustics(caustics), r(camera_ray), lens(camera_ray.origin),
+          done_(max_depth <= 0) {
+        if (caustics && max_depth >= 3) {
+            // The sample's own light path, which deeper vertices are joined to, its numbers from
+            // a stream split off the sample's own, which it leaves as it was (joined to every
+            // vertex of the path, the light path gains little from stratified numbers, which cost
+            // more to draw).
+            pcg32 light_rng = ps.rng().split();
+            trace_caustic_light_vertices(scene, *caustics, max_depth - 3, light_rng, camera_ray.time,
+                                         light_path, rays);
+        }
+    }
+
+    bool done() const { return done_; }
+    // Scattering events so far: the bounce whose dimensions (sample_dimension::bounce) the path
+    // draws from next.
+    int bounces() const { return depth; }
+    const ray3f& ray() const { return r; }
+    const vec3f& radiance_so_far() const { return radiance; }
+    // One bounce: ray() hit `hit` if `found`, else it left the scene.
+    void advance(bool found, const surface_hit& hit);
+
+  private:
+    void finish() { done_ = true; }
+    void join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit);
+
+    const compiled_scene& scene;
+    const environment& env;
+    const light_set& lights;
+    const int roulette_start, max_depth;
+    pixel_sampler& ps;
+    uint64_t& rays;
+    const caustic_splats* caustics;
+    ray3f r;
+    int depth = 0;
+    vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
+    // The vertex the ray left from, for weighing an emitter it hits against light sampling there:
+    // its position and the density its material drew the ray with. A camera ray, a ray after a
+    // delta lobe, and every ray of the bsdf and mixture estimators count emission in full.
+    bool count_emission_fully = true;
+    vec3f last_p;
+    float last_pdf = 0;
+    // Where the path stands in the pattern light tracing also finds: none, at x (the camera's first
+    // vertex, which sampled its non-delta lobe), past one or more delta vertices after x, or at a
+    // Lambertian inner vertex after them; and x itself, whose camera density weighs the two (asked
+    // only of the paths that end on a light).
+    enum class caustic_state : uint8_t { none, at_x, past_delta, inner } caustic = caustic_state::none;
+    vec3f x_p, x_normal;
+    // The same deeper (caustic_splats::deep_camera_path_weight): the path went from a vertex v
+    // past the first, by its non-delta lobe, to x, and on by x's non-delta lobe through delta
+    // vertices of materials without a density, with inner_vertices Lambertian ones between them;
+    // x_density is x's area density given v. light_path: the points the sample's own light path
+    // reached, which vertices like v are joined to.
+    caustic_state deep_caustic = caustic_state::none;
+    int inner_vertices = 0;
+    bool left_by_density = false; // the ray left a caustic vertex by its non-delta lobe
+    float x_density = 0;
+    caustic_light_vertices light_path;
+    const vec3f lens;
+    bool done_;
+};
+
+template <path_estimator E, bool UserMaterials>
+void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) {
+    ++rays;
+    if (!found) {
+        if (!(depth > 0 && env.camera_rays_only)) radiance += throughput * env.eval(r.dir);
+        return finish();
+    }
+    // The material at the hit: the scene's, or one built here, as a user-written hittable reports
+    // it (built from its record) or as a textured one is asked (a copy holding the texture's
+    // colour at this hit). An untextured material of the scene pays only the tests.
+    in_place_array<compiled_material, 2> built;
+    const compiled_material* at_hit = hit.user_shape ? &built.emplace_back(compile_reported_material(hit.user_record))
+                                                     : &scene.materials[hit.material];
+    if (at_hit->texture != no_texture) at_hit = &built.emplace_back(textured(scene, *at_hit, hit));
+    const compiled_material& m = *at_hit;
+    // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
+    // inside it (directions are unit).
+    if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
+    const shading_point sp{hit.shading_normal, hit.front_face};
+    const vec3f wo = -r.dir;
+
+    if (m.emits()) {
+        const vec3f le = m.emitted(wo, sp);
+        float weight = 1;
+        if (E == path_estimator::nee && !count_emission_fully && !is_black(le)) {
+            // Light sampling at the last vertex could have drawn this point too: weigh the two
+            // strategies by the power heuristic (Veach 1997, ch. 9).
+            const uint32_t l = lights.light_at(hit.kind, hit.index);
+            if (l != light_set::none) {
+                const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
+                weight = power_heuristic(last_pdf, lights.pdf(l, last_p, hit.p, outward));
+            }
+        }
+        if (caustic == caustic_state::past_delta) {
+            // Light tracing finds this path too: the path tracer's share of it.
+            const uint32_t l = lights.light_at(hit.kind, hit.index);
+            if (l != light_set::none)
+                weight *= caustics->camera_path_weight(l, caustics->camera_density(x_p, lens, x_normal));
+        }
+        if (deep_caustic == caustic_state::past_delta) {
+            const uint32_t l = lights.light_at(hit.kind, hit.index);
+            if (l != light_set::none) weight *= caustics->deep_camera_path_weight(l, x_density);
+        }
+        radiance += throughput * le * weight;
+    }
+    if (m.kind == material_kind::diffuse_light) return finish(); // emitters scatter nothing
+
+    // A user's material: its own emission, counted in full (it is not light-sampled), then
+    // its scatter(), asked once.
+    std::optional<user_material_hit> user;
+    if (UserMaterials && m.kind == material_kind::user) {
+        user.emplace(scene, *m.source, r, hit);
+        radiance += throughput * user->emitted();
+        if (!user->scatter()) return finish();
+    }
+    const bool smooth = hit.smooth_shaded();
+    const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
+                                            smooth && m.kind != material_kind::isotropic};
+    const bool has_density = vm.has_density();
+    // A constant_medium's scattering point (a user shape's hit with the isotropic phase
+    // function) is inside the fog, not on a surface: its rays start at the point itself.
+    // Pushed off along the medium's arbitrary normal (1, 0, 0) as a surface point is, by 256
+    // float ulps of x, its rays would start beside it for no reason.
+    const bool in_volume = hit.user_shape && m.kind == material_kind::isotropic;
+
+    // A light sample's contribution, if its shadow ray is clear: f Le / pdf, weighed by the
+    // power heuristic against material sampling (a point light has no rival strategy).
+    auto add_light_sample = [&](const light_choice& lc) {
+        vec3f le = lc.radiance; // a textured light's: looked up at the sampled point
+        if (lc.texture != no_texture && !is_black(le)) le = textured_light_radiance(scene, lc);
+        if (is_black(le)) return;
+        const vec3f f = vm.eval(lc.wi);
+        if (is_black(f)) return;
+        ++rays;
+        if (scene.occluded(shadow_ray(hit, lc, in_volume))) return;
+        const float weight = !lc.delta ? power_heuristic(lc.pdf, vm.pdf(lc.wi)) : 1.0f;
+        radiance += throughput * f * le * (weight / lc.pdf);
+    };
+
+    // Next-event estimation: a point on a light, and a shadow ray to it.
+    if (E == path_estimator::nee && !lights.empty() && has_density) {
+        light_choice lc;
+        dimension_uniforms u = light_uniforms(ps, depth);
+        if (lights.sample(hit.p, u, lc)) add_light_sample(lc);
+    }
+    // The mixture below covers area lights only; a point light, which no direction can hit,
+    // is sampled on its own (next-event estimation without a second strategy to weigh).
+    if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
+        light_choice lc;
+        dimension_uniforms u = light_uniforms(ps, depth);
+        if (lights.sample_point(hit.p, u, lc)) add_light_sample(lc);
+    }
+
+    // Caustics past this vertex, by light tracing: joined to the points the sample's light path
+    // reached past delta vertices.
+    if (caustics && light_path.at.size() > 0 && has_density && caustic_vertex(hit, m)) join_light_path(vm, hit);
+
+    material_sample s;
+    dimension_uniforms material_u = material_uniforms(ps, depth);
+    if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
+        // Book 3's one-sample mixture: the direction comes from the lights or from the
+        // material, half the time each, and is weighed by the mixture of both densities.
+        if (ps.get1d(sample_dimension::bounce(depth) + sample_dimension::strategy) < 0.5f) {
+            light_choice lc;
+            dimension_uniforms u = light_uniforms(ps, depth);
+            if (!lights.sample_area(hit.p, u, lc)) return finish();
+            s.wi = lc.wi;
+            s.sampled = non_delta_lobe;
+        } else {
+            if (!vm.sample(material_u, s)) return finish();
+            if (s.is_delta()) s.value *= 2.0f; // chosen half as often as the material alone would
+        }
+        if (!s.is_delta()) {
+            const vec3f f = vm.eval(s.wi);
+            const float pdf = 0.5f * lights.area_pdf_along(hit.p, s.wi) + 0.5f * vm.pdf(s.wi);
+            if (is_black(f) || !(pdf > 0)) return finish();
+            s.value = f / pdf;
+        }
+    } else if (!vm.sample(material_u, s)) {
+        return finish();
+    }
+    throughput *= s.value;
+    if (caustics) {
+        const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
+        if (depth == 0) {
+            caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
+            x_p = hit.p;
+            x_normal = hit.normal;
+        } else if (caustic != caustic_state::none && plain && s.is_delta()) {
+            caustic = caustic_state::past_delta;
+        } else if (caustic == caustic_state::past_delta && plain && m.kind == material_kind::lambertian) {
+            caustic = caustic_state::inner; // its non-delta lobe sampled: the only one it has
+        } else {
+            caustic = caustic_state::none;
+        }
+        if (depth >= 1 && plain && !s.is_delta() && left_by_density) {
+            deep_caustic = caustic_state::at_x;
+            inner_vertices = 0;
+            x_density = last_pdf * std::fabs(dot(hit.normal, r.dir)) / (hit.t * hit.t);
+        } else if (deep_caustic != caustic_state::none && plain && s.is_delta() && !m.has_non_delta_lobe()) {
+            deep_caustic = caustic_state::past_delta;
+        } else if (deep_caustic == caustic_state::past_delta && plain && m.kind == material_kind::lambertian &&
+                   inner_vertices + 1 < caustic_light_vertices::capacity) {
+            deep_caustic = caustic_state::inner;
+            ++inner_vertices;
+        } else {
+            deep_caustic = caustic_state::none;
+        }
+        left_by_density = plain && !s.is_delta();
+    }
+    count_emission_fully = E != path_estimator::nee || s.is_delta();
+    last_p = hit.p;
+    last_pdf = s.pdf;
+
+    if (E == path_estimator::nee && depth >= roulette_start) {
+        const float q = max_component(throughput) * (1.0f / roulette_weight);
+        if (q < 1.0f) {
+            if (!(ps.get1d(sample_dimension::bounce(depth) + sample_dimension::roulette) < q)) return finish();
+            throughput *= 1.0f / q;
+        }
+    }
+    r = spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity(), in_volume);
+    // The book: no more light is gathered past the bounce limit.
+    if (++depth >= max_depth) finish();
+}
+
+// This vertex v joined to each point x its sample's light path reached: the path camera -> ... ->
+// v -> x -> delta vertices -> light, as trace_caustic_path joins x to the camera, with v's
+// throughput and f in place of the camera's importance:
+//     throughput f_v(wo, dir) |cos_x| / d^2 * f_x(-dir, wi) / |cos_g(wi)| * light throughput,
+// weighed against the path tracer's finding it (caustic_splats::deep_light_path_weight).
+template <path_estimator E, bool UserMaterials>
+void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit) {
+    for (int k = 0; k < light_path.at.size(); ++k) {
+        const caustic_light_vertices::vertex& x = light_path.at[k];
+        // The path tracer's path would be longer than max_depth rays.
+        if (depth + x.vertices + 3 > max_depth) return;
+        const vec3f to = x.p - hit.p;
+        const float d2 = length_squared(to);
+        if (!(d2 > 0)) continue;
+        const vec3f dir = to / sqrt_f(d2);
+        const vec3f f_v = vm.eval(dir);
+        if (is_black(f_v)) continue;
+        // x as seen from v: normals on v's side.
+        const vec3f wo = -dir;
+        const bool flip = dot(wo, x.normal) < 0;
+        const shading_point sp{flip ? -x.shading_normal : x.shading_normal, flip != x.front_face};
+        compiled_material m = scene.materials[x.material];
+        m.albedo = x.colour; // a textured one's colour at x (else its own)
+        const vec3f f_x = m.eval(wo, x.wi, sp);
+        const float cos_in = std::fabs(dot(x.normal, x.wi)), cos_out = std::fabs(dot(x.normal, dir));
+        if (is_black(f_x) || !(cos_in > 0)) continue;
+        const float weight = caustics->deep_light_path_weight(light_path.light, vm.pdf(dir) * cos_out / d2);
+        const vec3f value = throughput * f_v * f_x * x.throughput * (weight * cos_out / (d2 * cos_in));
+        if (is_black(value) || !is_finite(value)) continue;
+        // The shadow ray, from v to x pushed off x on v's side.
+        light_choice end;
+        end.wi = dir;
+        end.y = x.p;
+        end.n = x.normal;
+        ++rays;
+        if (!scene.occluded(shadow_ray(hit, end, false))) radiance += value;
+    }
+}
+
+// A batch's rays and hits, kept in sample_batch::workspace from batch to batch: built for each
+// batch, the 32 hits (each with room for a user shape's hit_record) and 64 rays were 8 KB written
+// with their defaults every 32 samples, about 1.4 % of the cover's render time.
+struct batch_buffers {
+    ray3f camera_rays[sample_batch::capacity];
+    ray3f next[sample_batch::capacity];
+    surface_hit hits[sample_batch::capacity];
+};
+
+// One path from start to end: the radiance it carries.
+template <path_estimator E, bool UserMaterials>
+vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3f& r, int max_depth, pixel_sampler& ps,
+                 uint64_t& rays, const caustic_splats* caustics = nullptr) {
+    camera_path<E, UserMaterials> path(scene, env, r, max_depth, ps, rays, caustics);
+    surface_hit hit;
+    while (!path.done()) {
+        const bool found = scene.intersect(path.ray(), hit);
+        path.advance(found, hit);
+    }
+    return path.radiance_so_far();
+}
+
+} // namespace detail
+
+#ifndef RTWEEKEND_LINK_PATH_TRACER
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
+                                                      const environment& env, const render_settings& settings) {
+    return path_trace(world, frame, env, settings, {});
+}
+
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
+                                                      const environment& env, const render_settings& settings,
+                                                      const std::vector<point_light>& point_lights) {
+    auto start = std::chrono::steady_clock::now();
+    settings.check();
+    const compiled_scene scene = compile_scene(world, frame.position, point_lights);
+    const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
+    const bool user_code = scene.calls_user_code();
+    const bool with_time = scene.uses_time();
+    const sampler_plan plan(settings.sampler, settings.seed, spp);
+    // Caustics by light tracing (caustic_paths.h): nee with uniform sampling, in a scene that has them.
+    const bool caustics = settings.estimator == path_estimator::nee && settings.caustic_paths > 0 &&
+                          settings.adaptive_error == 0 && traces_caustics(scene);
+    // A batch of samples: their camera rays together (camera_frame::sample_rays), then each
+    // path on its own.
+    auto trace_batch = [&](auto estimator, sample_batch& b, const caustic_splats* splats) {
+        constexpr path_estimator E = decltype(estimator)::value;
+        in_place_array<pixel_sampler, sample_batch::capacity> samplers;
+        pixel_sampler* lanes[sample_batch::capacity];
+        for (int k = 0; k < b.count; ++k) lanes[k] = &samplers.emplace_back(plan, b.x[k], b.y[k], b.s[k], b.rng[k]);
+        if (!b.workspace) b.workspace = std::make_shared<detail::batch_buffers>();
+        detail::batch_buffers& buffers = *static_cast<detail::batch_buffers*>(b.workspace.get());
+        ray3f* camera_rays = buffers.camera_rays;
+        frame.sample_rays(b.count, b.x, b.y, lanes, spp, with_time, camera_rays);
+        if (user_code) {
+            // User-written shapes and materials may call random_double(): give them this sample's
+            // generator so the image stays deterministic, and let each path draw in its own order,
+            // one path after another.
+            for (int k = 0; k < b.count; ++k) {
+                detail::scoped_sample_rng guard(b.rng[k]);
+                b.color[k] = detail::trace_path<E, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k]);
+            }
+            return;
+        }
+        // The paths side by side, a bounce of each in turn (camera_path), their rays traced
+        // together (as packets: the camera rays start together and point nearly the same way;
+        // later bounces' rays less so, but the walk through the top of the tree, which most of
+        // them share, is paid once, and the processor overlaps the rays' work).
+        in_place_array<detail::camera_path<E, false>, sample_batch::capacity> paths;
+        for (int k = 0; k < b.count; ++k) paths.emplace_back(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
+        int live[sample_batch::capacity], n = 0;
+        for (int k = 0; k < b.count; ++k)
+            if (!paths[k].done()) live[n++] = k;
+        ray3f* next = buffers.next;
+        surface_hit* hits = buffers.hits;
+        bool found[sample_batch::capacity];
+        while (n > 0) {
+            for (int i = 0; i < n; ++i) next[i] = paths[live[i]].ray();
+            scene.intersect_batch(n, next, hits, found);
+            // The live paths are all at one bounce (they started together and each advance is
+            // one): their directions' Sobol pairs together, for about what two cost one by one.
+            if (n >= 3) {
+                pixel_sampler* live_samplers[sample_batch::capacity];
+                for (int i = 0; i < n; ++i) live_samplers[i] = lanes[live[i]];
+                sample_lanes numbers(live_samplers, n);
+                if (numbers.vectorised())
+                    numbers.prepare2d(sample_dimension::bounce(paths[live[0]].bounces()) + sample_dimension::direction);
+            }
+            int still = 0;
+            for (int i = 0; i < n; ++i) {
+                detail::camera_path<E, false>& path = paths[live[i]];
+                path.advance(found[i], hits[i]);
+                if (!path.done()) live[still++] = live[i];
+            }
+            n = still;
+        }
+        for (int k = 0; k < b.count; ++k) b.color[k] = paths[k].radiance_so_far();
+    };
+    if (caustics) {
+        caustic_splats splats(scene, frame, max_depth, settings.seed,
+                              settings.caustic_paths * double(frame.width) * double(frame.height));
+        return render_samples_with_splats(
+            frame.width, frame.height, settings,
+            [&](sample_batch& b) {
+                trace_batch(std::integral_constant<path_estimator, path_estimator::nee>{}, b, &splats);
+            },
+            splats, start);
+    }
+    auto render_with = [&](auto estimator) {
+        return render_samples(
+            frame.width, frame.height, settings, [&](sample_batch& b) { trace_batch(estimator, b, nullptr); },
+            start);
+    };
+    switch (settings.estimator) {
+    case path_estimator::bsdf: return render_with(std::integral_constant<path_estimator, path_estimator::bsdf>{});
+    case path_estimator::mixture:
+        return render_with(std::integral_constant<path_estimator, path_estimator::mixture>{});
+    case path_estimator::nee: break;
+    }
+    return render_with(std::integral_constant<path_estimator, path_estimator::nee>{});
+}
+#endif
+
+} // namespace rt

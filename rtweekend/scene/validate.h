@@ -1,0 +1,34 @@
+#pragma once
+// Checks of what users give the renderer (colours, points, sizes), each throwing scene_error with
+// one line that names the value and says what is wrong with it.
+
+#include "../color.h"
+#include "../core/scene_error.h"
+#include "../vec3.h"
+#include "../core/vec3f.h"
+
+#include <cmath>
+#include <string>
+
+namespace rt {
+
+// The float intersection tests square coordinates (relative to the camera) and radii, so they
+// must stay well inside float's range (squares up to 3.4e38).
+inline constexpr double max_float_extent = 1e18;
+
+inline bool finite3(const vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+// "(x, y, z)", for messages.
+inline std::string point_text(const vec3& v) {
+    return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
+}
+
+// A colour (reflectance, absorption, light intensity) must be finite, non-negative and within
+// float's range, since the renderer multiplies in float.
+inline void check_color(const color& c, const char* what) {
+    if (!finite3(c) || c.x() < 0 || c.y() < 0 || c.z() < 0)
+        throw scene_error(std::string(what) + " must be finite and non-negative, got " + point_text(c));
+    if (!is_finite(vec3f(c))) throw scene_error(std::string(what) + " is too large for single precision, got " + point_text(c));
+}
+
+} // namespace rt
