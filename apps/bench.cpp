@@ -221,7 +221,7 @@ void bench_scene(const bench_options& o) {
     const rt::bvh_stats& bs = compiled.bvh.stats;
     std::printf("scene %s: %zu spheres, %zu triangles, %zu quads, %zu lights; BVH built in %.2f ms (scene compiled in %.2f ms): "
                 "%zu nodes, %zu leaves, depth %d, %zu bytes of geometry and BVH\n",
-                o.scene.c_str(), compiled.spheres.count, compiled.triangles.distinct, compiled.quads.count,
+                o.scene.c_str(), compiled.set<rt::sphere_set>().count, compiled.set<rt::triangle_set>().distinct, compiled.set<rt::quad_set>().count,
                 compiled.lights.lights.size(), bs.build_ms, compile_s * 1e3, bs.nodes,
                 bs.leaves, bs.depth, compiled.geometry_bytes());
 
@@ -300,10 +300,10 @@ void print_mesh_summary(const std::string& name, const compiled_mesh& m) {
     const rt::bvh_stats& bs = m.scene.bvh.stats;
     std::printf("mesh %s: %zu triangles (%zu degenerate left out), loaded in %.0f ms; BVH built in %.0f ms: %zu nodes, "
                 "%zu leaves, depth %d; bytes_per_triangle %.1f (BVH %.1f + triangles %.1f)\n",
-                name.c_str(), m.triangles, m.scene.triangles.degenerate, m.load_ms, bs.build_ms, bs.nodes, bs.leaves,
-                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.triangles.distinct),
-                double(bs.bytes()) / double(m.scene.triangles.distinct),
-                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.triangles.distinct));
+                name.c_str(), m.triangles, m.scene.set<rt::triangle_set>().degenerate, m.load_ms, bs.build_ms, bs.nodes, bs.leaves,
+                bs.depth, double(m.scene.geometry_bytes()) / double(m.scene.set<rt::triangle_set>().distinct),
+                double(bs.bytes()) / double(m.scene.set<rt::triangle_set>().distinct),
+                double(m.scene.geometry_bytes() - bs.bytes()) / double(m.scene.set<rt::triangle_set>().distinct));
 }
 
 compiled_mesh load_and_compile(const std::string& path) {
@@ -351,10 +351,10 @@ auto closest_hit(const rt::compiled_scene& scene) {
 // The mesh's bounding box, in float.
 void mesh_bounds(const rt::compiled_scene& s, rt::vec3f& lo, rt::vec3f& hi) {
     rt::box3f box;
-    for (size_t i = 0; i < s.triangles.count; ++i)
+    for (size_t i = 0; i < s.set<rt::triangle_set>().count; ++i)
         for (int v = 0; v < 3; ++v)
-            box.grow(rt::vec3f{s.triangles.vertex[size_t(3 * v)][i], s.triangles.vertex[size_t(3 * v + 1)][i],
-                               s.triangles.vertex[size_t(3 * v + 2)][i]});
+            box.grow(rt::vec3f{s.set<rt::triangle_set>().vertex[size_t(3 * v)][i], s.set<rt::triangle_set>().vertex[size_t(3 * v + 1)][i],
+                               s.set<rt::triangle_set>().vertex[size_t(3 * v + 2)][i]});
     lo = box.lo;
     hi = box.hi;
 }
@@ -392,13 +392,13 @@ scaling_row measure(const std::string& what, const rt::compiled_scene& scene, si
     rt::vec3f lo, hi;
     rt::box3f box;
     // Bounds of everything: spheres and triangles.
-    for (size_t i = 0; i < scene.spheres.count; ++i) {
-        rt::vec3f c{scene.spheres.x[i], scene.spheres.y[i], scene.spheres.z[i]};
-        rt::vec3f r{scene.spheres.r[i], scene.spheres.r[i], scene.spheres.r[i]};
+    for (size_t i = 0; i < scene.set<rt::sphere_set>().count; ++i) {
+        rt::vec3f c{scene.set<rt::sphere_set>().x[i], scene.set<rt::sphere_set>().y[i], scene.set<rt::sphere_set>().z[i]};
+        rt::vec3f r{scene.set<rt::sphere_set>().r[i], scene.set<rt::sphere_set>().r[i], scene.set<rt::sphere_set>().r[i]};
         box.grow(c - r);
         box.grow(c + r);
     }
-    if (scene.triangles.count > 0) {
+    if (scene.set<rt::triangle_set>().count > 0) {
         mesh_bounds(scene, lo, hi);
         box.grow(lo);
         box.grow(hi);
@@ -433,7 +433,7 @@ void bench_scaling(const bench_options& o) {
     for (int level = 0; level <= o.levels; ++level) {
         app::tri_mesh sub = app::loop_subdivide(base, level);
         compiled_mesh m = compile_mesh(app::to_triangle_mesh(sub, std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5))));
-        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.triangles.distinct, o));
+        rows.push_back(measure("mesh, Loop x" + std::to_string(level), m.scene, m.scene.set<rt::triangle_set>().distinct, o));
     }
 
     std::printf("| primitives | scene | BVH build ms | bytes/primitive | ns/ray primary | ns/ray diffuse | ns/ray shadow |\n");

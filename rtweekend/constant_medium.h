@@ -31,6 +31,7 @@
 // and multiple importance sampling work at every scattering point inside the fog.
 
 #include "color.h"
+#include "core/recognise.h"
 #include "hittable.h"
 #include "interval.h"
 #include "material.h"
@@ -43,7 +44,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <typeinfo>
 #include <string>
 
 namespace rt {
@@ -104,8 +104,7 @@ inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, doub
     if (!(std::isfinite(density) && density >= 0))
         throw scene_error("constant_medium density must be finite and non-negative, got " + std::to_string(density));
     phase_function_ = std::make_shared<isotropic>(std::move(tex));
-    const hittable& boundary_object = *boundary_; // typeid of a reference: clang warns on typeid(*pointer)
-    if (typeid(boundary_object) == typeid(sphere)) boundary_sphere_ = static_cast<const sphere*>(boundary_.get());
+    if (is_exactly<sphere>(*boundary_)) boundary_sphere_ = static_cast<const sphere*>(boundary_.get());
 }
 
 inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, double density, const color& albedo)

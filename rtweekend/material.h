@@ -16,7 +16,7 @@
 //                                inside, keeps exp(-absorption * distance) per channel (Beer's law)
 // book 2's phase function, for constant_medium (constant_medium.h):
 //   isotropic(albedo)            scatters uniformly over all directions; isotropic(texture) too
-// and two glossy surfaces, with a density that light sampling can weigh (formulas in bsdf.h):
+// and two glossy surfaces, with a density that light sampling can weigh (formulas in core/materials/):
 //   plastic(diffuse, refraction_index = 1.5)
 //                                a Lambertian base under a smooth clear coat: the coat's mirror
 //                                reflection, Fresnel-weighted, over the base; a white plastic
@@ -27,7 +27,7 @@
 //                                per channel where it exceeds it, so no energy is created
 //
 // Each material's physics is written once, in the renderer's material contract (core/bsdf.h:
-// sample, eval, pdf), which every integrator calls. The renderer recognises these classes and
+// sample, eval, pdf; one header a kind in core/materials/), which every integrator calls. The renderer recognises these classes and
 // calls the contract directly, without virtual calls. The virtual functions below are the books'
 // interface, for code that calls them itself (a ray_color of one's own); for the built-in
 // materials they draw from the same contract, in float (directions and weights agree with double
@@ -45,8 +45,7 @@
 // the other into scope (`using material::scatter;`), so it is not hidden.
 
 #include "color.h"
-#include "core/bsdf.h"
-#include "core/fresnel.h"
+#include "core/material_kinds.h"
 #include "core/rng.h"
 #include "core/vec3f.h"
 #include "hittable.h"
@@ -167,7 +166,7 @@ class lambertian : public material {
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         compiled_material m = compiled();
-        if (!albedo_.solid()) m.albedo = vec3f(albedo_.at(rec));
+        if (!albedo_.solid()) m = m.with_colour(vec3f(albedo_.at(rec)));
         return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
     }
 
@@ -187,13 +186,7 @@ class lambertian : public material {
     // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
     // For a texture other than a solid_color the scene compiler adds the texture's index into
     // the scene's texture table (scene/texture_table.h); the albedo is looked up per hit.
-    compiled_material compiled() const {
-        compiled_material m;
-        m.kind = material_kind::lambertian;
-        m.albedo = vec3f(albedo_.constant());
-        m.source = this;
-        return m;
-    }
+    compiled_material compiled() const { return compiled_material::of(lambertian_bsdf{vec3f(albedo_.constant())}, this); }
 
     // The albedo when the texture is a solid_color; black for any other texture.
     const color& albedo() const { return albedo_.constant(); }
@@ -218,12 +211,7 @@ class metal : public material {
     }
 
     compiled_material compiled() const {
-        compiled_material m;
-        m.kind = material_kind::metal;
-        m.albedo = vec3f(albedo_);
-        m.fuzz = static_cast<float>(fuzz_);
-        m.source = this;
-        return m;
+        return compiled_material::of(metal_bsdf{vec3f(albedo_), static_cast<float>(fuzz_)}, this);
     }
 
     const color& albedo() const { return albedo_; }
@@ -252,13 +240,9 @@ class dielectric : public material {
     }
 
     compiled_material compiled() const {
-        compiled_material m;
-        m.kind = exact_fresnel_ ? material_kind::fresnel_dielectric : material_kind::dielectric;
-        m.albedo = {1, 1, 1};
-        m.refraction_index = static_cast<float>(refraction_index_);
-        m.absorption = vec3f(absorption_);
-        m.source = this;
-        return m;
+        const float ri = static_cast<float>(refraction_index_);
+        if (exact_fresnel_) return compiled_material::of(fresnel_glass_bsdf{ri, vec3f(absorption_)}, this);
+        return compiled_material::of(dielectric_bsdf{ri}, this);
     }
 
     // Refractive index in vacuum or air, or the ratio of the material's refractive index over
@@ -290,13 +274,7 @@ class conductor : public material {
     }
 
     compiled_material compiled() const {
-        compiled_material m;
-        m.kind = material_kind::conductor;
-        m.albedo = vec3f(tint_);
-        m.eta = vec3f(n_);
-        m.k = vec3f(k_);
-        m.source = this;
-        return m;
+        return compiled_material::of(conductor_bsdf{vec3f(tint_), vec3f(n_), vec3f(k_)}, this);
     }
 
     const color& n() const { return n_; }
@@ -332,15 +310,7 @@ class diffuse_light : public material {
 
     // The material as the renderer's contract sees it (unchecked: material_compiler.h checks).
     // Complete only when the texture is a solid_color.
-    compiled_material compiled() const {
-        compiled_material m;
-        m.kind = material_kind::diffuse_light;
-        m.albedo = {0, 0, 0};
-        m.emission = vec3f(emission_);
-        m.two_sided = two_sided_;
-        m.source = this;
-        return m;
-    }
+    compiled_material compiled() const { return compiled_material::of(emitter_bsdf{vec3f(emission_), two_sided_}, this); }
 
     // The emitted radiance when the texture is a solid_color; black for any other texture.
     const color& emission() const { return emission_; }
@@ -363,7 +333,7 @@ class isotropic : public material {
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         compiled_material m = compiled();
-        if (!albedo_.solid()) m.albedo = vec3f(albedo_.at(rec));
+        if (!albedo_.solid()) m = m.with_colour(vec3f(albedo_.at(rec)));
         return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
     }
 
@@ -382,13 +352,7 @@ class isotropic : public material {
     // Complete only when the texture is a solid_color; any other texture is rendered through the
     // virtual functions above (the medium reports the material at its own hit, which the texture
     // table does not reach).
-    compiled_material compiled() const {
-        compiled_material m;
-        m.kind = material_kind::isotropic;
-        m.albedo = vec3f(albedo_.constant());
-        m.source = this;
-        return m;
-    }
+    compiled_material compiled() const { return compiled_material::of(isotropic_phase{vec3f(albedo_.constant())}, this); }
 
     const color& albedo() const { return albedo_.constant(); }
     const std::shared_ptr<texture>& tex() const { return albedo_.tex(); }
@@ -399,7 +363,7 @@ class isotropic : public material {
 
 // A diffuse base of colour `diffuse` under a smooth dielectric coat of index refraction_index (in
 // air): the coat mirrors F(cos) of the light (Fresnel), the base returns diffuse (1 - F(cos)) of it
-// (bsdf.h, plastic_base_factor). Varnished wood, plastic toys, glazed pottery.
+// (core/materials/plastic_bsdf.h, plastic_base_factor). Varnished wood, plastic toys, glazed pottery.
 class plastic : public material {
   public:
     plastic(const color& diffuse, double refraction_index = 1.5)
@@ -412,13 +376,8 @@ class plastic : public material {
     }
 
     compiled_material compiled() const {
-        compiled_material m;
-        m.kind = material_kind::plastic;
-        m.albedo = vec3f(diffuse_);
-        m.refraction_index = static_cast<float>(refraction_index_);
-        m.coat_average = static_cast<float>(coat_average_);
-        m.source = this;
-        return m;
+        return compiled_material::of(
+            plastic_bsdf{vec3f(diffuse_), static_cast<float>(refraction_index_), static_cast<float>(coat_average_)}, this);
     }
 
     const color& diffuse() const { return diffuse_; }
@@ -432,7 +391,7 @@ class plastic : public material {
 
 // Lambertian reflectance `diffuse` plus a glossy Blinn-Phong lobe of reflectance `specular` and
 // Phong exponent `exponent` (higher: sharper highlights), normalised so that it never reflects
-// more than `specular` (bsdf.h, blinn_phong_lobe). Where diffuse + specular exceeds 1 in a
+// more than `specular` (core/materials/blinn_phong_bsdf.h, blinn_phong_lobe). Where diffuse + specular exceeds 1 in a
 // channel both are scaled by 1 / (diffuse + specular) there, so the surface creates no energy.
 class blinn_phong : public material {
   public:
@@ -450,15 +409,10 @@ class blinn_phong : public material {
     // whitted_material for the course's Blinn-Phong surfaces).
     static compiled_material contract(const color& diffuse, const color& specular, double exponent,
                                       const material* source) {
-        compiled_material m;
-        m.kind = material_kind::blinn_phong;
         const color sum = diffuse + specular;
         const color scale(sum.x() > 1 ? 1 / sum.x() : 1, sum.y() > 1 ? 1 / sum.y() : 1, sum.z() > 1 ? 1 / sum.z() : 1);
-        m.albedo = vec3f(diffuse * scale);
-        m.specular = vec3f(specular * scale);
-        m.exponent = static_cast<float>(exponent);
-        m.source = source;
-        return m;
+        return compiled_material::of(
+            blinn_phong_bsdf{vec3f(diffuse * scale), vec3f(specular * scale), static_cast<float>(exponent)}, source);
     }
 
     const color& diffuse() const { return diffuse_; }

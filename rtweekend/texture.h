@@ -16,6 +16,7 @@
 // without virtual calls; a texture of another class (a user's own) is looked up through value().
 
 #include "color.h"
+#include "core/recognise.h"
 #include "interval.h"
 #include "perlin.h"
 #include "rtw_stb_image.h"
@@ -113,10 +114,10 @@ class noise_texture : public texture {
 // The texture as a solid_color if it is exactly one (not a subclass, which may override
 // value()), else null: a material whose texture is one is rendered from its constant colour.
 inline const solid_color* exact_solid_color(const texture* tex) {
-    // dynamic_cast rather than a static_cast behind the typeid test: g++ 12 inlines the cast into
-    // callers holding another texture and warns (-Warray-bounds) about the branch never taken.
+    // dynamic_cast rather than a static_cast behind the test: g++ 12 inlines the cast into callers
+    // holding another texture and warns (-Warray-bounds) about the branch never taken.
     auto* solid = dynamic_cast<const solid_color*>(tex);
-    return solid && typeid(*tex) == typeid(solid_color) ? solid : nullptr;
+    return solid && is_exactly<solid_color>(*tex) ? solid : nullptr;
 }
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------

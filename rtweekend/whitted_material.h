@@ -19,7 +19,7 @@
 // Colours here are in the course's units: 0..255 per channel on output, no gamma.
 
 #include "color.h"
-#include "core/bsdf.h"
+#include "core/material_kinds.h"
 #include "core/vec3f.h"
 #include "material.h"
 
@@ -53,36 +53,24 @@ class whitted_material : public material {
     // glossy = false leaves out the blinn_phong lobe of a plain material (the Whitted integrator,
     // which shades specular highlights by the course's own formula, asks for that).
     compiled_material compiled(bool glossy = true) const {
-        compiled_material m;
         const float n = static_cast<float>(refraction_index), k = static_cast<float>(absorption_index);
+        compiled_material m;
         switch (effective_kind()) {
         case kind_t::plain:
             if (glossy && (specular.x() > 0 || specular.y() > 0 || specular.z() > 0))
                 return blinn_phong::contract(diffuse, specular, phong_exponent, this);
-            m.kind = material_kind::lambertian;
-            m.albedo = vec3f(diffuse);
-            break;
-        case kind_t::mirror:
-            m.kind = material_kind::metal; // fuzz 0: a perfect mirror
-            m.albedo = vec3f(mirror);
-            m.diffuse = vec3f(diffuse);
+            return compiled_material::of(lambertian_bsdf{vec3f(diffuse)}, this);
+        case kind_t::mirror: // a perfect mirror
+            m = compiled_material::of(metal_bsdf{vec3f(mirror), 0}, this);
             break;
         case kind_t::conductor:
-            m.kind = material_kind::conductor;
-            m.albedo = vec3f(mirror);
-            m.eta = {n, n, n};
-            m.k = {k, k, k};
-            m.diffuse = vec3f(diffuse);
+            m = compiled_material::of(conductor_bsdf{vec3f(mirror), {n, n, n}, {k, k, k}}, this);
             break;
         case kind_t::dielectric:
-            m.kind = material_kind::fresnel_dielectric;
-            m.albedo = {1, 1, 1};
-            m.refraction_index = n;
-            m.absorption = vec3f(absorption_coefficient);
-            m.diffuse = vec3f(diffuse);
+            m = compiled_material::of(fresnel_glass_bsdf{n, vec3f(absorption_coefficient)}, this);
             break;
         }
-        m.source = this;
+        m.set_diffuse_base(vec3f(diffuse));
         return m;
     }
 };

@@ -722,7 +722,7 @@ TEST_CASE("lambertian: book 3's cosine pdf, scattering_pdf = cos/pi, the texture
     // A solid_color given as a texture is the plain albedo.
     lambertian solid(std::make_shared<solid_color>(0.1, 0.2, 0.3));
     check_near(solid.albedo(), color(0.1, 0.2, 0.3), 0);
-    CHECK(solid.compiled().kind == material_kind::lambertian);
+    CHECK(solid.compiled().is<lambertian_bsdf>());
 }
 
 TEST_CASE("metal, dielectric, conductor: book 3's scatter skips the pdf with the book-1 draw") {
@@ -787,31 +787,31 @@ TEST_CASE("diffuse_light: one-sided by default, two-sided on request, scatters n
     check_near(textured.emitted(r_in, rec, 0.125, 0.25, point3(3, 0, 0)), color(0.125, 0.25, 3), 0);
 
     compiled_material c = two.compiled();
-    CHECK(c.kind == material_kind::diffuse_light);
-    CHECK(c.emission.x == 4);
-    CHECK(c.emission.z == 6);
-    CHECK(c.two_sided);
-    CHECK(c.albedo.x == 0);
+    CHECK(c.is<emitter_bsdf>());
+    CHECK(c.emission().x == 4);
+    CHECK(c.emission().z == 6);
+    CHECK(c.two_sided());
+    CHECK_FALSE(c.scatters()); // a light reflects nothing
     CHECK(c.source == &two);
 }
 
 TEST_CASE("compile_material: solid colours compile, other textures become user entries, bad values throw") {
     lambertian plain(color(0.5, 0.25, 0.125));
-    CHECK(compile_material(plain).kind == material_kind::lambertian);
-    CHECK(compile_material(plain).albedo.y == 0.25f);
+    CHECK(compile_material(plain).is<lambertian_bsdf>());
+    CHECK(compile_material(plain).as<lambertian_bsdf>().albedo.y == 0.25f);
     lambertian textured(std::make_shared<uv_texture>());
-    CHECK(compile_material(textured).kind == material_kind::user);
+    CHECK(compile_material(textured).is<user_bsdf>());
     CHECK(compile_material(textured).source == &textured);
     CHECK_THROWS_AS(compile_material(lambertian(std::shared_ptr<texture>())), scene_error);
     CHECK_THROWS_AS(compile_material(lambertian(std::make_shared<solid_color>(-1, 0, 0))), scene_error);
 
     diffuse_light light(color(15, 15, 15));
     compiled_material c = compile_material(light);
-    CHECK(c.kind == material_kind::diffuse_light);
-    CHECK(c.emission.y == 15);
-    CHECK_FALSE(c.two_sided);
+    CHECK(c.is<emitter_bsdf>());
+    CHECK(c.emission().y == 15);
+    CHECK_FALSE(c.two_sided());
     diffuse_light textured_light(std::make_shared<uv_texture>());
-    CHECK(compile_material(textured_light).kind == material_kind::user);
+    CHECK(compile_material(textured_light).is<user_bsdf>());
     CHECK_THROWS_AS(compile_material(diffuse_light(color(1, -1, 1))), scene_error);
     CHECK_THROWS_AS(compile_material(diffuse_light(color(1, NAN, 1))), scene_error);
     CHECK_THROWS_AS(compile_material(diffuse_light(std::shared_ptr<texture>())), scene_error);

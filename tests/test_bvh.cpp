@@ -35,9 +35,10 @@ wide_bvh build_with_spatial_splits(const std::vector<std::array<vec3f, 3>>& corn
     for (uint32_t i = 0; i < corners.size(); ++i) {
         box3f b;
         for (const vec3f& v : corners[i]) b.grow(v);
-        prims.push_back({b, shape_kind::triangle, i});
+        prims.push_back({b, shape_id<triangle_set>, i});
     }
-    options.triangle_corners = [&corners](uint32_t i) { return corners[i]; };
+    options.split_kind = shape_id<triangle_set>;
+    options.split_corners = [&corners](uint32_t i) { return corners[i]; };
     options.spatial_min_count = 16;
     return build_wide_bvh(prims, options);
 }
@@ -99,7 +100,7 @@ TEST_CASE("bvh: every primitive exactly once, leaves bounded and of one kind, bo
     uint32_t spheres = 0, triangles = 0;
     for (int i = 0; i < 5000; ++i) {
         bool tri = rng.next_float() < 0.7f;
-        prims.push_back({random_box(rng, 100, tri ? 1.0f : 3.0f), tri ? shape_kind::triangle : shape_kind::sphere,
+        prims.push_back({random_box(rng, 100, tri ? 1.0f : 3.0f), tri ? shape_id<triangle_set> : shape_id<sphere_set>,
                          tri ? triangles++ : spheres++});
     }
     bvh_build_options options;
@@ -143,7 +144,7 @@ TEST_CASE("bvh: the wide collapse leaves no inner child its parent has room to t
         std::vector<bvh_primitive> prims;
         const int n = 500 + 1500 * int(seed);
         for (int i = 0; i < n; ++i)
-            prims.push_back({random_box(rng, 100, 0.2f + 4.0f * rng.next_float()), shape_kind::sphere, uint32_t(i)});
+            prims.push_back({random_box(rng, 100, 0.2f + 4.0f * rng.next_float()), shape_id<sphere_set>, uint32_t(i)});
         const wide_bvh bvh = build_wide_bvh(prims, bvh_build_options{});
         auto children = [&](uint32_t node) {
             int count = 0;
@@ -175,7 +176,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     // Three spheres: no nodes, the root is one leaf (a tiny scene needs no hierarchy).
     std::vector<bvh_primitive> three;
     pcg32 rng = sample_rng(9, 0, 0);
-    for (uint32_t i = 0; i < 3; ++i) three.push_back({random_box(rng, 10, 1), shape_kind::sphere, i});
+    for (uint32_t i = 0; i < 3; ++i) three.push_back({random_box(rng, 10, 1), shape_id<sphere_set>, i});
     wide_bvh small = build_wide_bvh(three);
     CHECK(small.nodes.empty());
     REQUIRE(bvh_ref::is_leaf(small.root));
@@ -184,7 +185,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
 
     // Two kinds in a tiny scene: split by kind, since a leaf holds one kind.
     std::vector<bvh_primitive> mixed = three;
-    mixed.push_back({random_box(rng, 10, 1), shape_kind::triangle, 0});
+    mixed.push_back({random_box(rng, 10, 1), shape_id<triangle_set>, 0});
     wide_bvh m = build_wide_bvh(mixed);
     REQUIRE_FALSE(bvh_ref::is_leaf(m.root));
     checker cm(m, mixed, bvh_build_options{}.max_leaf_size);
@@ -195,7 +196,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
     // bounded leaves and a bounded depth (object-median splits).
     std::vector<bvh_primitive> same;
     box3f b = random_box(rng, 1, 1);
-    for (uint32_t i = 0; i < 10000; ++i) same.push_back({b, shape_kind::triangle, i});
+    for (uint32_t i = 0; i < 10000; ++i) same.push_back({b, shape_id<triangle_set>, i});
     wide_bvh s = build_wide_bvh(same);
     checker cs(s, same, bvh_build_options{}.max_leaf_size);
     cs.walk(s.root, nullptr, 0);
@@ -212,7 +213,7 @@ TEST_CASE("bvh: small and degenerate inputs") {
         box3f t;
         t.grow(vec3f(float(i % 2) * 1e-39f, float(i), 0));
         t.grow(vec3f(float(i % 2) * 1e-39f, float(i) + 0.5f, 1));
-        thin.push_back({t, shape_kind::triangle, i});
+        thin.push_back({t, shape_id<triangle_set>, i});
     }
     wide_bvh th = build_wide_bvh(thin);
     checker ct(th, thin, bvh_build_options{}.max_leaf_size);
@@ -247,7 +248,7 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
     }
     bvh_build_options options;
     wide_bvh bvh = build_with_spatial_splits(corners, options);
-    const std::vector<uint32_t>& order = bvh.order[size_t(shape_kind::triangle)];
+    const std::vector<uint32_t>& order = bvh.order[size_t(shape_id<triangle_set>)];
     CHECK(order.size() > corners.size() + corners.size() / 20); // more than 5 % copies: splits happened
     CHECK(order.size() < 2 * corners.size()); // and within reason (budget 1.3, per split at most its node)
 
@@ -268,7 +269,7 @@ TEST_CASE("bvh: spatial splits keep every part of every triangle inside a leaf b
                 pending.push_back(child);
                 continue;
             }
-            if (bvh_ref::kind(child) != shape_kind::triangle || bvh_ref::count(child) > options.max_leaf_size) ++problems;
+            if (bvh_ref::kind(child) != shape_id<triangle_set> || bvh_ref::count(child) > options.max_leaf_size) ++problems;
             std::vector<uint32_t> in_leaf;
             for (uint32_t k = bvh_ref::first(child); k < bvh_ref::first(child) + bvh_ref::count(child); ++k) {
                 const uint32_t t = order.at(k);
@@ -317,12 +318,12 @@ TEST_CASE("bvh: spatial splits of triangles that all overlap stay within their b
     }
     bvh_build_options options;
     wide_bvh bvh = build_with_spatial_splits(corners, options);
-    const size_t n = corners.size(), references = bvh.order[size_t(shape_kind::triangle)].size();
+    const size_t n = corners.size(), references = bvh.order[size_t(shape_id<triangle_set>)].size();
     CHECK(references >= n);
     // The budget is checked before each split, which may add at most its node's references.
     CHECK(double(references) <= double(options.spatial_budget) * double(n) + double(n));
     std::vector<int> seen(n, 0);
-    for (uint32_t t : bvh.order[size_t(shape_kind::triangle)]) ++seen.at(t);
+    for (uint32_t t : bvh.order[size_t(shape_id<triangle_set>)]) ++seen.at(t);
     CHECK(std::count(seen.begin(), seen.end(), 0) == 0);
     CHECK(bvh.stats.depth < 96 / 3); // the wide tree of a binary tree under 96 levels
 }
@@ -358,7 +359,7 @@ TEST_CASE("bvh: the walk enters every box the ray's range meets, ahead of the or
         box3f b = random_box(rng, 20, 1.0f);
         b.lo = b.lo - vec3f(10, 10, 10);
         b.hi = b.hi - vec3f(10, 10, 10);
-        prims.push_back({b, shape_kind::sphere, i});
+        prims.push_back({b, shape_id<sphere_set>, i});
     }
     const wide_bvh bvh = build_wide_bvh(prims);
     const float inf = std::numeric_limits<float>::infinity();
@@ -408,19 +409,26 @@ TEST_CASE("bvh: the walk enters every box the ray's range meets, ahead of the or
 }
 
 TEST_CASE("bvh: leaf references round-trip their fields") {
-    uint32_t ref = bvh_ref::make_leaf(shape_kind::triangle, 12345678, 16);
+    uint32_t ref = bvh_ref::make_leaf(shape_id<triangle_set>, 12345678, 16);
     CHECK(bvh_ref::is_leaf(ref));
-    CHECK(bvh_ref::kind(ref) == shape_kind::triangle);
+    CHECK(bvh_ref::kind(ref) == shape_id<triangle_set>);
     CHECK(bvh_ref::first(ref) == 12345678u);
     CHECK(bvh_ref::count(ref) == 16u);
-    ref = bvh_ref::make_leaf(shape_kind::sphere, bvh_ref::max_first, 1);
-    CHECK(bvh_ref::kind(ref) == shape_kind::sphere);
+    ref = bvh_ref::make_leaf(shape_id<sphere_set>, bvh_ref::max_first, 1);
+    CHECK(bvh_ref::kind(ref) == shape_id<sphere_set>);
     CHECK(bvh_ref::first(ref) == bvh_ref::max_first);
     CHECK(bvh_ref::count(ref) == 1u);
     CHECK_FALSE(bvh_ref::is_leaf(42));
-    // Every kind the 3 bits can name (1 + kind in bits 29-31: kinds 0 to 6), with the largest
-    // first and count, decodes to itself and never to an inner node.
-    CHECK(bvh_ref::max_first == (1u << 25) - 1);
+    // The kind bits are as many as the list of shape kinds needs (0 is an inner node), 4 bits of
+    // count below them, the first primitive in the rest: 3 kind bits and 2^25 primitives a kind
+    // for up to 7 kinds.
+    const uint32_t kind_bits = shape_kind_count < 8 ? 3 : 4;
+    CHECK(bvh_ref::kind_bits == kind_bits);
+    CHECK(bvh_ref::max_shape_kinds == (1 << kind_bits) - 1);
+    CHECK(shape_kind_count <= bvh_ref::max_shape_kinds);
+    CHECK(bvh_ref::max_first == (1u << (32 - kind_bits - 4)) - 1);
+    // Every kind the bits can name, with the largest first and count, decodes to itself and never
+    // to an inner node.
     for (uint32_t k = 0; k < uint32_t(bvh_ref::max_shape_kinds); ++k) {
         CAPTURE(k);
         uint32_t leaf = bvh_ref::make_leaf(static_cast<shape_kind>(k), bvh_ref::max_first - 15, 16);

@@ -111,10 +111,10 @@ TEST_CASE("bvh_node: a node over one object holds it on both sides, the renderer
     hittable_list one(std::make_shared<sphere>(point3(0, 0, 0), 1, mat));
     hittable_list world(std::make_shared<bvh_node>(one));
     compiled_scene scene = compile_scene(world, point3(0, 0, 5));
-    CHECK(scene.spheres.count == 1);
+    CHECK(scene.set<sphere_set>().count == 1);
     hittable_list three;
     for (int i = 0; i < 3; ++i) three.add(std::make_shared<sphere>(point3(3 * i, 0, 0), 1, mat));
-    CHECK(compile_scene(hittable_list(std::make_shared<bvh_node>(three)), point3(0, 0, 5)).spheres.count == 3);
+    CHECK(compile_scene(hittable_list(std::make_shared<bvh_node>(three)), point3(0, 0, 5)).set<sphere_set>().count == 3);
 }
 
 } // namespace test_bvh_node

@@ -294,17 +294,17 @@ TEST_CASE("fresnel: the book-interface absorbing dielectric applies Beer's law o
 
 TEST_CASE("conductor: compile_scene maps the new materials and keeps the book's glass Schlick") {
     compiled_material book = compiled_desc(std::make_shared<dielectric>(1.5));
-    CHECK(book.kind == material_kind::dielectric);
+    CHECK(book.is<dielectric_bsdf>());
     compiled_material exact = compiled_desc(std::make_shared<dielectric>(1.5, color(0.1, 0.2, 0.3)));
-    CHECK(exact.kind == material_kind::fresnel_dielectric);
-    CHECK(exact.refraction_index == 1.5f);
-    CHECK(exact.absorption.z == 0.3f);
+    CHECK(exact.is<fresnel_glass_bsdf>());
+    CHECK(exact.as<fresnel_glass_bsdf>().refraction_index == 1.5f);
+    CHECK(exact.as<fresnel_glass_bsdf>().absorption.z == 0.3f);
     compiled_material metal_desc =
         compiled_desc(std::make_shared<conductor>(color(0.2, 0.3, 0.4), color(3, 2, 1), color(1, 0.5, 0.25)));
-    CHECK(metal_desc.kind == material_kind::conductor);
-    CHECK(metal_desc.eta.y == 0.3f);
-    CHECK(metal_desc.k.x == 3.0f);
-    CHECK(metal_desc.albedo.z == 0.25f);
+    CHECK(metal_desc.is<conductor_bsdf>());
+    CHECK(metal_desc.as<conductor_bsdf>().eta.y == 0.3f);
+    CHECK(metal_desc.as<conductor_bsdf>().k.x == 3.0f);
+    CHECK(metal_desc.as<conductor_bsdf>().tint.z == 0.25f);
 }
 
 TEST_CASE("conductor: invalid n, k, tint or absorption is a scene_error at compile time") {
@@ -331,11 +331,8 @@ TEST_CASE("conductor: invalid n, k, tint or absorption is a scene_error at compi
 // The material contract (core/bsdf.h)
 
 TEST_CASE("conductor: the kernel mirrors exactly and weights by tint * Fr(cos) per channel") {
-    compiled_material m;
-    m.kind = material_kind::conductor;
-    m.albedo = {1.0f, 0.5f, 0.25f};
-    m.eta = {0.18f, 0.42f, 1.37f};
-    m.k = {3.42f, 2.35f, 1.77f};
+    const conductor_bsdf gold{{1.0f, 0.5f, 0.25f}, {0.18f, 0.42f, 1.37f}, {3.42f, 2.35f, 1.77f}};
+    const compiled_material m = compiled_material::of(gold);
     pcg32 rng(7);
     const vec3 N = unit_vector(vec3(-0.3, 0.4, 0.9));
     for (double angle = 0; angle < 90; angle += 2.5) {
@@ -348,8 +345,8 @@ TEST_CASE("conductor: the kernel mirrors exactly and weights by tint * Fr(cos) p
             CHECK((dir.to_double() - mirror).length() < 1e-6);
             double c = std::cos(angle * pi_d / 180);
             for (int ch = 0; ch < 3; ++ch) {
-                double Fr = reference_reflectance(c, std::complex<double>(m.eta[ch], m.k[ch]));
-                CHECK(att[ch] == doctest::Approx(m.albedo[ch] * Fr).epsilon(1e-5));
+                double Fr = reference_reflectance(c, std::complex<double>(gold.eta[ch], gold.k[ch]));
+                CHECK(att[ch] == doctest::Approx(gold.tint[ch] * Fr).epsilon(1e-5));
             }
         }
     }
@@ -369,10 +366,8 @@ long count_exact_reflections(const exact_glass_case& g, float kernel_ior, long N
     const vec3 n = unit_vector(vec3(0.3, 0.9, -0.2));
     const vec3 wi = incident(n, g.angle_deg);
     const double ri = g.front_face ? 1 / g.ior : g.ior; // n_i / n_t
-    compiled_material glass;
-    glass.kind = material_kind::fresnel_dielectric;
-    glass.refraction_index = kernel_ior;
-    glass.absorption = {0.5f, 1.0f, 2.0f}; // the kernel ignores it: Beer's law is the tracer's
+    // The absorption: the kernel ignores it (Beer's law is the tracer's).
+    const compiled_material glass = compiled_material::of(fresnel_glass_bsdf{kernel_ior, {0.5f, 1.0f, 2.0f}});
     long reflected = 0;
     for (long i = 0; i < N; ++i) {
         vec3f dir, att;

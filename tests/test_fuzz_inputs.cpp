@@ -706,9 +706,7 @@ TEST_CASE("fuzz: a light whose power overflows a float (the light table threw an
     CHECK(r.img.width() == 8);
     // A power a float holds is the float product, as before (the same light choices, the same images).
     light l;
-    l.kind = light_kind::quad;
-    l.p1 = {2, 0, 0};
-    l.p2 = {0, 2, 0};
+    l.emitter = quad_emitter{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
     l.emission = {3, 3, 3};
     CHECK(l.power() == double(3.0f * 4.0f * pi_f));
     l.emission = {3e38f, 3e38f, 3e38f};

@@ -113,7 +113,7 @@ TEST_CASE("plastic: reflects F(cos) + albedo (1 - F(cos)), a white plastic refle
     for (double n : {1.5, 2.0}) {
         for (color albedo : {color(1, 1, 1), color(0.8, 0.3, 0.05)}) {
             const compiled_material m = compile_material(plastic(albedo, n));
-            REQUIRE(m.kind == material_kind::plastic);
+            REQUIRE(m.is<plastic_bsdf>());
             for (double deg : {0.0, 35.0, 70.0, 88.0}) {
                 CAPTURE(n);
                 CAPTURE(deg);
@@ -177,7 +177,7 @@ TEST_CASE("blinn_phong: the glossy lobe reflects at most ks, exactly its closed 
     pcg32 rng(19);
     for (double n : {0.0, 1.0, 10.0, 100.0}) {
         const compiled_material m = compile_material(blinn_phong(color(0, 0, 0), color(1, 1, 1), n));
-        REQUIRE(m.kind == material_kind::blinn_phong);
+        REQUIRE(m.is<blinn_phong_bsdf>());
         const double s = std::sqrt(0.5);
         const double normal = (n + 1) * (2 * (1 - std::pow(s, n + 3)) / (n + 3) - (1 - std::pow(s, n + 1)) / (n + 1));
         for (double deg : {0.0, 30.0, 60.0, 80.0}) {
@@ -200,11 +200,11 @@ TEST_CASE("blinn_phong: the glossy lobe reflects at most ks, exactly its closed 
 
 TEST_CASE("blinn_phong: diffuse + specular above 1 is scaled down per channel, the surface stays within 1") {
     const compiled_material m = compile_material(blinn_phong(color(0.8, 0.2, 0.5), color(1.0, 0.5, 0.3), 30));
-    CHECK(m.albedo.x == doctest::Approx(0.8 / 1.8));
-    CHECK(m.specular.x == doctest::Approx(1.0 / 1.8));
-    CHECK(m.albedo.y == doctest::Approx(0.2)); // 0.7: kept
-    CHECK(m.specular.y == doctest::Approx(0.5));
-    CHECK(m.albedo.z == doctest::Approx(0.5)); // 0.8: kept
+    CHECK(m.as<blinn_phong_bsdf>().albedo.x == doctest::Approx(0.8 / 1.8));
+    CHECK(m.as<blinn_phong_bsdf>().specular.x == doctest::Approx(1.0 / 1.8));
+    CHECK(m.as<blinn_phong_bsdf>().albedo.y == doctest::Approx(0.2)); // 0.7: kept
+    CHECK(m.as<blinn_phong_bsdf>().specular.y == doctest::Approx(0.5));
+    CHECK(m.as<blinn_phong_bsdf>().albedo.z == doctest::Approx(0.5)); // 0.8: kept
     pcg32 rng(20);
     for (double deg : {0.0, 50.0, 85.0}) {
         double mean[3], se[3];
@@ -268,17 +268,17 @@ TEST_CASE("course scenes: a plain material with a specular term is blinn_phong t
     shiny->specular = color(0.3, 0.3, 0.3);
     shiny->phong_exponent = 40;
     const compiled_material m = compile_material(*shiny);
-    CHECK(m.kind == material_kind::blinn_phong);
-    CHECK(m.albedo.x == doctest::Approx(0.5));
-    CHECK(m.specular.y == doctest::Approx(0.3));
-    CHECK(m.exponent == 40);
+    CHECK(m.is<blinn_phong_bsdf>());
+    CHECK(m.as<blinn_phong_bsdf>().albedo.x == doctest::Approx(0.5));
+    CHECK(m.as<blinn_phong_bsdf>().specular.y == doctest::Approx(0.3));
+    CHECK(m.as<blinn_phong_bsdf>().exponent == 40);
     // Without a specular term: Lambertian, as before; a mirror keeps its mirror (specular unused).
     auto matte = std::make_shared<whitted_material>();
     matte->diffuse = color(0.5, 0.5, 0.5);
-    CHECK(compile_material(*matte).kind == material_kind::lambertian);
+    CHECK(compile_material(*matte).is<lambertian_bsdf>());
     auto mirror = std::make_shared<whitted_material>(*shiny);
     mirror->mirror = color(0.5, 0.5, 0.5);
-    CHECK(compile_material(*mirror).kind == material_kind::metal);
+    CHECK(compile_material(*mirror).is<metal_bsdf>());
     // The Whitted integrator shades the course's specular by its own formula (whitted_terms), so
     // its table holds the Lambertian base.
     whitted_scene scene;
@@ -288,8 +288,8 @@ TEST_CASE("course scenes: a plain material with a specular term is blinn_phong t
     scene.cameras.push_back(cam);
     whitted_renderer renderer(scene);
     REQUIRE(renderer.compiled().materials.size() == 1);
-    CHECK(renderer.compiled().materials[0].kind == material_kind::lambertian);
-    CHECK(renderer.compiled().materials[0].albedo.x == doctest::Approx(0.5));
+    CHECK(renderer.compiled().materials[0].is<lambertian_bsdf>());
+    CHECK(renderer.compiled().materials[0].as<lambertian_bsdf>().albedo.x == doctest::Approx(0.5));
 }
 
 } // namespace test_glossy

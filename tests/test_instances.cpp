@@ -100,7 +100,7 @@ TEST_CASE("instances: rotate about an axis moves a triangle where Rodrigues puts
     check_vec(rec.p, target, 1e-12);
     check_vec(rec.normal, vec3(-1, -1, 1) / std::sqrt(3.0), 1e-9); // the plane -x - y + z = 1, facing the ray
     const compiled_scene scene = compile_scene(world, point3(0, 0, 5));
-    CHECK(scene.triangles.count == 1); // a rigid map over one triangle: flattened
+    CHECK(scene.set<triangle_set>().count == 1); // a rigid map over one triangle: flattened
     surface_hit hit;
     REQUIRE(scene.intersect(engine_ray(scene, from, vec3(0, 0, -1)), hit));
     CHECK(hit.t == doctest::Approx(10).epsilon(1e-5));
@@ -124,11 +124,11 @@ TEST_CASE("instances: a sphere scaled by (2, 1, 1) is the ellipsoid x^2/4 + y^2 
     CHECK(rec.front_face);
 
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    CHECK(scene.spheres.count == 0); // no longer a sphere: an instance
-    CHECK(scene.instances.count() == 1);
+    CHECK(scene.set<sphere_set>().count == 0); // no longer a sphere: an instance
+    CHECK(scene.set<instance_set>().count() == 1);
     surface_hit hit;
     REQUIRE(scene.intersect(engine_ray(scene, from, vec3(0, 0, -1)), hit));
-    CHECK(hit.kind == shape_kind::instance);
+    CHECK(hit.kind == shape_id<instance_set>);
     CHECK(hit.t == doctest::Approx(4.5).epsilon(1e-5));
     check_vec(hit.p.to_double(), p, 1e-5);
     check_vec(hit.normal.to_double(), gradient, 1e-5);
@@ -156,11 +156,11 @@ TEST_CASE("instances: an instanced mesh is hit exactly where the same mesh trans
 
     const compiled_scene inst = compile_scene(instanced, point3(0, 0, 0));
     const compiled_scene flat = compile_scene(by_hand, point3(0, 0, 0));
-    CHECK(inst.instances.count() == 2);
+    CHECK(inst.set<instance_set>().count() == 2);
     REQUIRE(inst.objects.size() == 1);
-    CHECK(inst.objects[0]->triangles.distinct == mesh->faces.size());
-    CHECK(inst.triangles.count == 0);
-    CHECK(flat.triangles.distinct == 2 * mesh->faces.size());
+    CHECK(inst.objects[0]->set<triangle_set>().distinct == mesh->faces.size());
+    CHECK(inst.set<triangle_set>().count == 0);
+    CHECK(flat.set<triangle_set>().distinct == 2 * mesh->faces.size());
 
     std::mt19937 gen(11);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -192,10 +192,10 @@ TEST_CASE("instances: a mesh placed 1000 times is stored once") {
     for (int i = 0; i < 1000; ++i)
         world.add(std::make_shared<translate>(mesh, vec3(3.0 * (i % 10), 3.0 * ((i / 10) % 10), -3.0 * (i / 100) - 5)));
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    CHECK(scene.instances.count() == 1000);
+    CHECK(scene.set<instance_set>().count() == 1000);
     REQUIRE(scene.objects.size() == 1);
-    CHECK(scene.objects[0]->triangles.distinct == mesh->faces.size());
-    CHECK(scene.triangles.count == 0);
+    CHECK(scene.objects[0]->set<triangle_set>().distinct == mesh->faces.size());
+    CHECK(scene.set<triangle_set>().count == 0);
     // Each placement is where its translation puts it: straight down -z onto the sphere of
     // instance (i, j) in the front layer, whose top point is at z = -5 + 1.
     for (int i : {0, 3, 9})
@@ -209,8 +209,8 @@ TEST_CASE("instances: a mesh placed 1000 times is stored once") {
     hittable_list once;
     once.add(std::make_shared<translate>(mesh, vec3(0, 0, -5)));
     const compiled_scene single = compile_scene(once, point3(0, 0, 0));
-    CHECK(single.instances.count() == 0);
-    CHECK(single.triangles.distinct == mesh->faces.size());
+    CHECK(single.set<instance_set>().count() == 0);
+    CHECK(single.set<triangle_set>().distinct == mesh->faces.size());
 }
 
 TEST_CASE("instances: small subtrees are copied, spheres under a similarity stay spheres") {
@@ -222,12 +222,12 @@ TEST_CASE("instances: small subtrees are copied, spheres under a similarity stay
     // (90 degrees about y takes +x to -z).
     world.add(std::make_shared<scale>(std::make_shared<rotate>(ball, vec3(0, 1, 0), 90), 3.0));
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    CHECK(scene.instances.count() == 0);
-    CHECK(scene.quads.count == 30);
-    REQUIRE(scene.spheres.count == 1);
-    CHECK(scene.spheres.r[0] == doctest::Approx(1.5));
-    CHECK(scene.spheres.z[0] == doctest::Approx(-3));
-    CHECK(std::fabs(scene.spheres.x[0]) < 1e-6);
+    CHECK(scene.set<instance_set>().count() == 0);
+    CHECK(scene.set<quad_set>().count == 30);
+    REQUIRE(scene.set<sphere_set>().count == 1);
+    CHECK(scene.set<sphere_set>().r[0] == doctest::Approx(1.5));
+    CHECK(scene.set<sphere_set>().z[0] == doctest::Approx(-3));
+    CHECK(std::fabs(scene.set<sphere_set>().x[0]) < 1e-6);
 }
 
 namespace {
@@ -264,7 +264,7 @@ TEST_CASE("instances: rays spawned from instanced convex shapes never hit them a
         hittable_list world;
         world.add(std::make_shared<translate>(std::make_shared<scale>(ball, vec3(300, 1, 0.02)), vec3(1000, 20, -30)));
         const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-        REQUIRE(scene.instances.count() == 1);
+        REQUIRE(scene.set<instance_set>().count() == 1);
         int tested = 0;
         const int again = spawned_rays_hitting_again(
             scene, [&](std::mt19937& g) { return point3(1000 + 250 * u(g), 20 + 0.8 * u(g), -30); },
@@ -281,7 +281,7 @@ TEST_CASE("instances: rays spawned from instanced convex shapes never hit them a
         for (double y : {0.0, 50.0})
             world.add(std::make_shared<translate>(std::make_shared<scale>(mesh, vec3(2, 1, 1)), vec3(1000, y, -3)));
         const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-        REQUIRE(scene.instances.count() == 2);
+        REQUIRE(scene.set<instance_set>().count() == 2);
         int tested = 0;
         const int again = spawned_rays_hitting_again(
             scene, [&](std::mt19937& g) { return point3(1.8 * u(g), 0.9 * u(g), -3); },
@@ -297,7 +297,7 @@ TEST_CASE("instances: a moving sphere inside an instance moves with the ray's ti
     hittable_list world;
     world.add(std::make_shared<scale>(mover, vec3(2, 1, 1))); // centre (0,0,0) -> (2,0,0), an ellipsoid
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    REQUIRE(scene.instances.count() == 1);
+    REQUIRE(scene.set<instance_set>().count() == 1);
     CHECK(scene.has_motion);
     surface_hit hit;
     // Down -z through x = 2: the ellipsoid's centre is there only at time 1.
@@ -325,7 +325,7 @@ TEST_CASE("instances: the scene format's rotate and scale words") {
     std::istringstream text("sphere 0 0 0 1 lambertian 0.5 0.5 0.5 0 0 scale 2 1 1 rotate 0 0 1 90 translate 0 0 -5\n");
     const scene_description scene_text = parse_scene(text, "inline.txt");
     const compiled_scene scene = compile_scene(scene_text.world, point3(0, 0, 0));
-    CHECK(scene.instances.count() == 1);
+    CHECK(scene.set<instance_set>().count() == 1);
     surface_hit hit;
     REQUIRE(scene.intersect(engine_ray(scene, point3(0, 1.2, 0), vec3(0, 0, -1)), hit));
     CHECK(hit.t == doctest::Approx(4.2).epsilon(1e-5));
@@ -358,7 +358,7 @@ TEST_CASE("instances: a textured shape inside an instance has the (u, v) of its 
                            probe{vec3(0, 10, 0), vec3(0, -1, 0), -1, 1.0}}) {
         surface_hit hit;
         REQUIRE(scene.intersect(engine_ray(scene, p.from, p.dir), hit));
-        CHECK(hit.kind == shape_kind::instance);
+        CHECK(hit.kind == shape_id<instance_set>);
         double u, v;
         surface_coordinates(scene, hit, u, v);
         if (p.u >= 0) CHECK(u == doctest::Approx(p.u).epsilon(1e-5));

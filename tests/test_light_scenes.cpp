@@ -82,7 +82,7 @@ TEST_CASE("scene file: quad, box, lights, transforms and background") {
 
     // The compiled scene: 2 + 6 quads, two lights on quads and one point light.
     compiled_scene c = compile_scene(s.world, point3(0, 0, 5), s.point_lights);
-    CHECK(c.quads.count == 8);
+    CHECK(c.set<quad_set>().count == 8);
     CHECK(c.lights.lights.size() == 3);
 }
 

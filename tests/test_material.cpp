@@ -26,27 +26,11 @@ namespace {
 
 constexpr double deg = 3.14159265358979323846 / 180.0;
 
-compiled_material make_dielectric(float ior) {
-    compiled_material m;
-    m.kind = material_kind::dielectric;
-    m.refraction_index = ior;
-    return m;
-}
+compiled_material make_dielectric(float ior) { return compiled_material::of(dielectric_bsdf{ior}); }
 
-compiled_material make_metal(vec3f albedo, float fuzz) {
-    compiled_material m;
-    m.kind = material_kind::metal;
-    m.albedo = albedo;
-    m.fuzz = fuzz;
-    return m;
-}
+compiled_material make_metal(vec3f albedo, float fuzz) { return compiled_material::of(metal_bsdf{albedo, fuzz}); }
 
-compiled_material make_lambertian(vec3f albedo) {
-    compiled_material m;
-    m.kind = material_kind::lambertian;
-    m.albedo = albedo;
-    return m;
-}
+compiled_material make_lambertian(vec3f albedo) { return compiled_material::of(lambertian_bsdf{albedo}); }
 
 // A unit direction travelling downwards at angle theta from the -y axis, in the xy plane; the
 // surface normal facing it is +y.

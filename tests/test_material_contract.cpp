@@ -27,6 +27,10 @@ namespace {
 
 constexpr double pi_d = 3.14159265358979323846;
 
+// Whether m is the books' metal with a glossy lobe (a fuzz with a density), and its fuzz.
+bool is_glossy_metal(const compiled_material& m) { return m.is<metal_bsdf>() && m.as<metal_bsdf>().glossy(); }
+float fuzz_of(const compiled_material& m) { return m.is<metal_bsdf>() ? m.as<metal_bsdf>().fuzz : 0.0f; }
+
 struct named_material {
     std::string name;
     compiled_material m;
@@ -158,8 +162,8 @@ TEST_CASE("material contract: sample's value is eval / pdf at the sampled direct
                 }
                 // Every material samples something at these angles.
                 CHECK(density + delta > 0);
-                const bool density_only = nm.m.kind == material_kind::lambertian || nm.m.is_glossy_metal() ||
-                                          nm.m.kind == material_kind::isotropic || nm.m.kind == material_kind::blinn_phong;
+                const bool density_only = nm.m.is<lambertian_bsdf>() || is_glossy_metal(nm.m) ||
+                                          nm.m.is<isotropic_phase>() || nm.m.is<blinn_phong_bsdf>();
                 if (density_only) CHECK(delta == 0);
                 if (!nm.m.has_non_delta_lobe()) CHECK(density == 0);
             }
@@ -168,9 +172,9 @@ TEST_CASE("material contract: sample's value is eval / pdf at the sampled direct
 }
 
 TEST_CASE("material contract: the fuzzy metal has a density down to a fuzz of 1e-4, a delta lobe below") {
-    CHECK(compile_material(metal(color(1, 1, 1), 0.0)).is_glossy_metal() == false);
-    CHECK(compile_material(metal(color(1, 1, 1), 5e-5)).is_glossy_metal() == false);
-    CHECK(compile_material(metal(color(1, 1, 1), 2e-4)).is_glossy_metal() == true);
+    CHECK(is_glossy_metal(compile_material(metal(color(1, 1, 1), 0.0))) == false);
+    CHECK(is_glossy_metal(compile_material(metal(color(1, 1, 1), 5e-5))) == false);
+    CHECK(is_glossy_metal(compile_material(metal(color(1, 1, 1), 2e-4))) == true);
     // The density's closed form at its peak, w = m: s = f, p = f (3 + f^2) / (2 pi f^3); for f = 1
     // (p = 2 c^3 / pi): 2 / pi at the mirror direction.
     const vec3f m = normalize(vec3f(0.3f, 0.9f, 0.1f));
@@ -196,11 +200,11 @@ TEST_CASE("material contract: chi-square of sample() against pdf() for every lob
             CAPTURE(deg);
             const shading_point sp{normal_f, true};
             const vec3f wo = outgoing(deg);
-            const bool glossy = nm.m.is_glossy_metal();
+            const bool glossy = is_glossy_metal(nm.m);
             const vec3f axis = glossy ? normalize(reflect_f(-wo, normal_f)) : normal_f;
             // The lobe's angular extent about its axis: all of a hemisphere, or the cone of half
             // angle asin(fuzz); a phase function's, the whole sphere.
-            const double mu0 = glossy                        ? std::sqrt(std::fmax(0.0, 1 - double(nm.m.fuzz) * nm.m.fuzz))
+            const double mu0 = glossy                        ? std::sqrt(std::fmax(0.0, 1 - double(fuzz_of(nm.m)) * fuzz_of(nm.m)))
                                : nm.m.is_phase_function() ? -1.0
                                                             : 0.0;
             const frame3 f(axis);
@@ -322,9 +326,9 @@ TEST_CASE("material contract: reciprocity of eval where it holds") {
     pcg32 rng(505);
     for (const named_material& nm : all_materials()) {
         // Reciprocal in f: the Lambertian bases, plastic's coupled base, Blinn-Phong's lobes.
-        const bool diffuse = nm.m.kind == material_kind::lambertian || nm.m.has_diffuse_base() ||
-                             nm.m.kind == material_kind::plastic || nm.m.kind == material_kind::blinn_phong;
-        const bool glossy = nm.m.is_glossy_metal();
+        const bool diffuse = nm.m.is<lambertian_bsdf>() || nm.m.has_diffuse_base() ||
+                             nm.m.is<plastic_bsdf>() || nm.m.is<blinn_phong_bsdf>();
+        const bool glossy = is_glossy_metal(nm.m);
         const bool phase = nm.m.is_phase_function(); // eval is the phase function: symmetric
         if (!diffuse && !glossy && !phase) continue;
         CAPTURE(nm.name);
@@ -335,7 +339,7 @@ TEST_CASE("material contract: reciprocity of eval where it holds") {
             vec3f a = f.dir(0.05 + 0.95 * rng.next_double(), 2 * pi_d * rng.next_double());
             // For the glossy lobe, b within its cone about a's mirror direction, where eval is not 0.
             const float u1 = rng.next_float(), u2 = rng.next_float(), u3 = rng.next_float();
-            vec3f b = glossy ? normalize(reflect_f(-a, normal_f) + 0.9f * nm.m.fuzz * sample_unit_ball(u1, u2, u3))
+            vec3f b = glossy ? normalize(reflect_f(-a, normal_f) + 0.9f * fuzz_of(nm.m) * sample_unit_ball(u1, u2, u3))
                              : f.dir(0.05 + 0.95 * rng.next_double(), 2 * pi_d * rng.next_double());
             if (!(dot(b, normal_f) > 0.05f)) continue;
             if (phase && i % 2) b = -b; // a phase function scatters between the two sides alike
@@ -387,37 +391,35 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
             double expect[3] = {-1, -1, -1};
             const compiled_material& m = nm.m;
             for (int k = 0; k < 3; ++k) {
-                switch (m.kind) {
-                case material_kind::lambertian: expect[k] = m.albedo[k]; break;
-                case material_kind::metal:
-                    if (m.fuzz > 0) {
-                        double a = c / m.fuzz;
-                        expect[k] = m.albedo[k] * (a >= 1 ? 1.0 : 1 - (0.5 - 0.75 * a + 0.25 * a * a * a));
+                if (const auto* l = m.get_if<lambertian_bsdf>()) {
+                    expect[k] = l->albedo[k];
+                } else if (const auto* mt = m.get_if<metal_bsdf>()) {
+                    if (mt->fuzz > 0) {
+                        double a = c / mt->fuzz;
+                        expect[k] = mt->albedo[k] * (a >= 1 ? 1.0 : 1 - (0.5 - 0.75 * a + 0.25 * a * a * a));
                     } else {
-                        expect[k] = m.albedo[k];
+                        expect[k] = mt->albedo[k];
                     }
-                    break;
-                case material_kind::dielectric:
-                case material_kind::fresnel_dielectric: expect[k] = 1; break;
-                case material_kind::conductor: expect[k] = m.albedo[k] * fresnel_conductor(c, m.eta[k], m.k[k]); break;
-                case material_kind::diffuse_light: expect[k] = 0; break; // an emitter reflects nothing
-                case material_kind::isotropic: expect[k] = m.albedo[k]; break; // every draw, the albedo
-                case material_kind::plastic: {
-                    // The coat F, the base albedo (1 - F) (bsdf.h, plastic_base_factor); F from
-                    // the exact Fresnel equations (test_conductor_fresnel.cpp checks them).
-                    const double F = fresnel_dielectric(c, m.refraction_index);
-                    expect[k] = F + m.albedo[k] * (1 - F);
-                    break;
-                }
-                case material_kind::blinn_phong:
+                } else if (m.is<dielectric_bsdf>() || m.is<fresnel_glass_bsdf>()) {
+                    expect[k] = 1;
+                } else if (const auto* cd = m.get_if<conductor_bsdf>()) {
+                    expect[k] = cd->tint[k] * fresnel_conductor(c, cd->eta[k], cd->k[k]);
+                } else if (m.is<emitter_bsdf>()) {
+                    expect[k] = 0; // an emitter reflects nothing
+                } else if (const auto* iso = m.get_if<isotropic_phase>()) {
+                    expect[k] = iso->albedo[k]; // every draw, the albedo
+                } else if (const auto* pl = m.get_if<plastic_bsdf>()) {
+                    // The coat F, the base albedo (1 - F) (plastic_bsdf.h, plastic_base_factor); F
+                    // from the exact Fresnel equations (test_conductor_fresnel.cpp checks them).
+                    const double F = fresnel_dielectric(c, pl->refraction_index);
+                    expect[k] = F + pl->albedo[k] * (1 - F);
+                } else if (const auto* bp = m.get_if<blinn_phong_bsdf>()) {
                     // Known in closed form at normal incidence only (test_glossy.cpp): kd + ks E(n).
                     if (deg == 0) {
-                        const double n = m.exponent, s = std::sqrt(0.5);
+                        const double n = bp->exponent, s = std::sqrt(0.5);
                         const double E = (n + 1) * (2 * (1 - std::pow(s, n + 3)) / (n + 3) - (1 - std::pow(s, n + 1)) / (n + 1));
-                        expect[k] = m.albedo[k] + m.specular[k] * E;
+                        expect[k] = bp->albedo[k] + bp->specular[k] * E;
                     }
-                    break;
-                case material_kind::user: break;
                 }
                 if (m.has_diffuse_base()) expect[k] += m.diffuse[k];
             }
@@ -427,16 +429,16 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
                 INFO("channel " << k << ": mean " << mean << ", expected " << expect[k]);
                 // Never more energy than received; except that the course's dielectric adds its
                 // diffuse term on top of a lossless interface, by the course's own definition.
-                if (!(m.kind == material_kind::fresnel_dielectric && m.has_diffuse_base())) CHECK(mean <= 1 + tol);
+                if (!(m.is<fresnel_glass_bsdf>() && m.has_diffuse_base())) CHECK(mean <= 1 + tol);
                 if (expect[k] >= 0) CHECK(std::fabs(mean - expect[k]) <= tol);
             }
 
             // The integral of eval over the hemisphere, for the lobes with a density: the base's
             // kd, the Lambertian's albedo, the fuzzy metal's albedo times what stays above.
-            const bool diffuse_only = m.kind == material_kind::lambertian || m.has_diffuse_base();
-            const bool known = m.kind == material_kind::plastic || (m.kind == material_kind::blinn_phong && deg == 0);
-            if (!diffuse_only && !m.is_glossy_metal() && !known) continue;
-            if (m.is_glossy_metal() && m.fuzz < 0.2f) continue; // too narrow for this quadrature
+            const bool diffuse_only = m.is<lambertian_bsdf>() || m.has_diffuse_base();
+            const bool known = m.is<plastic_bsdf>() || (m.is<blinn_phong_bsdf>() && deg == 0);
+            if (!diffuse_only && !is_glossy_metal(m) && !known) continue;
+            if (is_glossy_metal(m) && fuzz_of(m) < 0.2f) continue; // too narrow for this quadrature
             const int nmu = 200, nphi = 400;
             const frame3 f(normal_f);
             double integral[3] = {0, 0, 0};
@@ -448,10 +450,11 @@ TEST_CASE("material contract: a furnace per material: the mean weight, and the i
             for (int k = 0; k < 3; ++k) {
                 integral[k] *= (1.0 / nmu) * (2 * pi_d / nphi);
                 // plastic: the base alone, albedo (1 - F) = expect - F.
-                double want = m.kind == material_kind::lambertian ? m.albedo[k]
-                              : m.has_diffuse_base()              ? m.diffuse[k]
-                              : m.kind == material_kind::plastic  ? expect[k] - fresnel_dielectric(c, m.refraction_index)
-                                                                  : expect[k];
+                double want = m.is<lambertian_bsdf>() ? m.as<lambertian_bsdf>().albedo[k]
+                              : m.has_diffuse_base() ? m.diffuse[k]
+                              : m.is<plastic_bsdf>()
+                                  ? expect[k] - fresnel_dielectric(c, m.as<plastic_bsdf>().refraction_index)
+                                  : expect[k];
                 INFO("channel " << k << ": integral of eval " << integral[k] << ", expected " << want);
                 CHECK(integral[k] <= 1.0 + 1e-3);
                 CHECK(integral[k] == doctest::Approx(want).epsilon(0.01));

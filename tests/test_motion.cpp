@@ -89,15 +89,15 @@ TEST_CASE("motion: the engine hits a moving sphere where it is at the ray's time
     hittable_list world;
     world.add(moving_test_sphere());
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    CHECK(scene.spheres.count == 0);
-    CHECK(scene.moving_spheres.count == 1);
+    CHECK(scene.set<sphere_set>().count == 0);
+    CHECK(scene.set<moving_sphere_set>().count == 1);
     CHECK(scene.has_motion);
     CHECK(scene.uses_time());
     for (const expected_hit& e : expected) {
         CAPTURE(e.time);
         surface_hit hit;
         REQUIRE(scene.intersect(engine_ray(vec3(0.5, 0, 0), vec3(0, 0, -1), float(e.time)), hit));
-        CHECK(hit.kind == shape_kind::moving_sphere);
+        CHECK(hit.kind == shape_id<moving_sphere_set>);
         CHECK(hit.t == doctest::Approx(e.t).epsilon(1e-5));
         CHECK(hit.front_face);
         CHECK(hit.time == float(e.time)); // spawned rays keep it
@@ -118,11 +118,11 @@ TEST_CASE("motion: a still scene uses no time and no moving-sphere kind") {
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(0, 0, -5), 1.0, grey()));
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    CHECK(scene.spheres.count == 1);
-    CHECK(scene.moving_spheres.count == 0);
+    CHECK(scene.set<sphere_set>().count == 1);
+    CHECK(scene.set<moving_sphere_set>().count == 0);
     CHECK_FALSE(scene.has_motion);
     CHECK_FALSE(scene.uses_time());
-    CHECK(scene.single_kind == shape_kind::sphere);
+    CHECK(scene.single_kind == shape_id<sphere_set>);
 }
 
 TEST_CASE("motion: many moving spheres in a BVH agree with the teaching surface at random times") {

@@ -153,7 +153,7 @@ TEST_CASE("packets: the cover scene's camera rays and bounce rays find what each
     scene_description d = load_scene(std::string(RTWEEKEND_TEST_DATA) + "/rtiow_cover.txt");
     const compiled_scene s = compile_scene(d.world, d.cam.lookfrom);
     REQUIRE(s.single_kind);
-    CHECK(*s.single_kind == shape_kind::sphere);
+    CHECK(*s.single_kind == shape_id<sphere_set>);
     pcg32 rng(1, 2);
     const int camera_hits = check_batches(s, coherent_rays(s, d.cam.lookfrom, d.cam.lookat, 4096, rng));
     CHECK(camera_hits > 3000); // the view is mostly ground and spheres
@@ -191,8 +191,8 @@ TEST_CASE("packets: every shape kind at once, against each ray alone and against
     const point3 origin(1, 2, 3);
     const compiled_scene s = compile_scene(world, origin);
     CHECK_FALSE(s.single_kind);
-    CHECK(s.instances.count() == 2);
-    CHECK(s.moving_spheres.count == 40);
+    CHECK(s.set<instance_set>().count() == 2);
+    CHECK(s.set<moving_sphere_set>().count == 40);
 
     std::vector<ray3f> rays = coherent_rays(s, point3(0, 0, 25), point3(0, 0, 0), 2048, rng);
     const std::vector<ray3f> more = incoherent_rays(s, 30, 4096, rng);
@@ -235,12 +235,12 @@ TEST_CASE("packets: hits at one distance go to the lowest shape, alone and in a 
         world.add(std::make_shared<sphere>(c, 0.2, m));
     }
     const compiled_scene s = compile_scene(world, point3(0.5, 0.5, 4));
-    REQUIRE(s.triangles.count == 3);
+    REQUIRE(s.set<triangle_set>().count == 3);
     // The compiled index of each input triangle: by its second and third corners.
     auto index_of = [&](float bx, float by, float cx, float cy) {
         for (uint32_t i = 0; i < 3; ++i)
-            if (s.triangles.vertex[3][i] + s.origin.x() == bx && s.triangles.vertex[4][i] + s.origin.y() == by &&
-                s.triangles.vertex[6][i] + s.origin.x() == cx && s.triangles.vertex[7][i] + s.origin.y() == cy)
+            if (s.set<triangle_set>().vertex[3][i] + s.origin.x() == bx && s.set<triangle_set>().vertex[4][i] + s.origin.y() == by &&
+                s.set<triangle_set>().vertex[6][i] + s.origin.x() == cx && s.set<triangle_set>().vertex[7][i] + s.origin.y() == cy)
                 return i;
         return hit_ref::none;
     };
@@ -263,7 +263,7 @@ TEST_CASE("packets: hits at one distance go to the lowest shape, alone and in a 
             REQUIRE(found[k]);
             CHECK(alone.t == 4.0f);
             CHECK(together[k].index == alone.index);
-            CHECK(alone.kind == shape_kind::triangle);
+            CHECK(alone.kind == shape_id<triangle_set>);
             CHECK(alone.index == (rays == &diagonal ? 0u : lower_copy));
         }
     }
@@ -272,18 +272,18 @@ TEST_CASE("packets: hits at one distance go to the lowest shape, alone and in a 
 TEST_CASE("ties: at one distance the lower (kind, index) beats, in whatever order the shapes come") {
     // beats() by itself: nearer wins; at exactly one distance the lower kind, then the lower index;
     // with no best yet the range is open (t_best is the ray's tmax).
-    const hit_ref tri5{shape_kind::triangle, 5};
-    CHECK(beats(1.5f, shape_kind::triangle, 9, 2.0f, tri5));
-    CHECK_FALSE(beats(2.5f, shape_kind::triangle, 1, 2.0f, tri5));
-    CHECK(beats(2.0f, shape_kind::triangle, 3, 2.0f, tri5));
-    CHECK_FALSE(beats(2.0f, shape_kind::triangle, 7, 2.0f, tri5));
-    CHECK_FALSE(beats(2.0f, shape_kind::triangle, 5, 2.0f, tri5));
-    CHECK(beats(2.0f, shape_kind::sphere, 900, 2.0f, tri5));
-    CHECK_FALSE(beats(2.0f, shape_kind::quad, 0, 2.0f, tri5));
-    CHECK_FALSE(beats(2.0f, shape_kind::sphere, 0, 2.0f, hit_ref{}));
-    CHECK(beats(1.0f, shape_kind::quad, 4, 2.0f, hit_ref{}));
+    const hit_ref tri5{shape_id<triangle_set>, 5};
+    CHECK(beats(1.5f, shape_id<triangle_set>, 9, 2.0f, tri5));
+    CHECK_FALSE(beats(2.5f, shape_id<triangle_set>, 1, 2.0f, tri5));
+    CHECK(beats(2.0f, shape_id<triangle_set>, 3, 2.0f, tri5));
+    CHECK_FALSE(beats(2.0f, shape_id<triangle_set>, 7, 2.0f, tri5));
+    CHECK_FALSE(beats(2.0f, shape_id<triangle_set>, 5, 2.0f, tri5));
+    CHECK(beats(2.0f, shape_id<sphere_set>, 900, 2.0f, tri5));
+    CHECK_FALSE(beats(2.0f, shape_id<quad_set>, 0, 2.0f, tri5));
+    CHECK_FALSE(beats(2.0f, shape_id<sphere_set>, 0, 2.0f, hit_ref{}));
+    CHECK(beats(1.0f, shape_id<quad_set>, 4, 2.0f, hit_ref{}));
     // Three shapes at one distance taken in every order end at the same one.
-    const hit_ref shapes[3] = {{shape_kind::quad, 2}, {shape_kind::triangle, 8}, {shape_kind::triangle, 4}};
+    const hit_ref shapes[3] = {{shape_id<quad_set>, 2}, {shape_id<triangle_set>, 8}, {shape_id<triangle_set>, 4}};
     const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
     for (const auto& order : orders) {
         float t_best = std::numeric_limits<float>::infinity();
@@ -293,7 +293,7 @@ TEST_CASE("ties: at one distance the lower (kind, index) beats, in whatever orde
                 t_best = 3.0f;
                 best = shapes[i];
             }
-        CHECK(best.kind == shape_kind::triangle);
+        CHECK(best.kind == shape_id<triangle_set>);
         CHECK(best.index == 4u);
     }
     // take_closest over lanes: the nearest lane, the first of equal ones, against the best so far.
@@ -301,11 +301,11 @@ TEST_CASE("ties: at one distance the lower (kind, index) beats, in whatever orde
     for (size_t k = 0; k < floatv::width; ++k) t[k] = 10.0f + float(k);
     t[floatv::width - 1] = 2.0f;
     float t_best = 2.0f;
-    hit_ref best{shape_kind::triangle, 100};
-    CHECK(take_closest(first_lanes(unsigned(floatv::width)), floatv::load(t), shape_kind::triangle, 40, t_best, best));
+    hit_ref best{shape_id<triangle_set>, 100};
+    CHECK(take_closest(first_lanes(unsigned(floatv::width)), floatv::load(t), shape_id<triangle_set>, 40, t_best, best));
     CHECK(best.index == 40 + floatv::width - 1); // index 40 + width - 1 < 100: the tie goes to it
-    CHECK_FALSE(take_closest(first_lanes(unsigned(floatv::width)), floatv::load(t), shape_kind::triangle, 400, t_best, best));
-    CHECK_FALSE(take_closest(first_lanes(0), floatv::load(t), shape_kind::sphere, 0, t_best, best));
+    CHECK_FALSE(take_closest(first_lanes(unsigned(floatv::width)), floatv::load(t), shape_id<triangle_set>, 400, t_best, best));
+    CHECK_FALSE(take_closest(first_lanes(0), floatv::load(t), shape_id<sphere_set>, 0, t_best, best));
 }
 
 namespace {

@@ -68,12 +68,12 @@ TEST_CASE("compile_scene: positions are relative to the origin, computed in doub
     hittable_list world;
     world.add(std::make_shared<sphere>(point3(1e8 + 0.5, -3, 2.25), 0.75, grey()));
     compiled_scene s = compile_scene(world, point3(1e8, 0, 0));
-    REQUIRE(s.spheres.count == 1);
-    CHECK(s.spheres.x[0] == 0.5f);
-    CHECK(s.spheres.y[0] == -3.0f);
-    CHECK(s.spheres.z[0] == 2.25f);
-    CHECK(s.spheres.r[0] == 0.75f);
-    CHECK(s.spheres.r2[0] == 0.5625f); // 0.75^2, exact
+    REQUIRE(s.set<sphere_set>().count == 1);
+    CHECK(s.set<sphere_set>().x[0] == 0.5f);
+    CHECK(s.set<sphere_set>().y[0] == -3.0f);
+    CHECK(s.set<sphere_set>().z[0] == 2.25f);
+    CHECK(s.set<sphere_set>().r[0] == 0.75f);
+    CHECK(s.set<sphere_set>().r2[0] == 0.5625f); // 0.75^2, exact
     CHECK(s.origin.x() == 1e8);
 
     // The hit is found where it should be: a ray from relative (0, -3, 2.25) along +x starts 0.5
@@ -99,46 +99,46 @@ TEST_CASE("compile_scene: padding, nested lists, material table") {
     world.add(std::make_shared<sphere>(point3(4, 0, -5), 1, shared));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
 
-    CHECK(s.spheres.count == 5);
+    CHECK(s.set<sphere_set>().count == 5);
     // Five spheres need no BVH: the root is one leaf holding all of them, in input order.
     CHECK(s.bvh.nodes.empty());
     CHECK(bvh_ref::is_leaf(s.bvh.root));
     CHECK(bvh_ref::count(s.bvh.root) == 5);
     // Arrays padded by one SIMD width (leaf loads read that far), padding spheres unhittable
     // (negative squared radius).
-    CHECK(s.spheres.x.size() == 5 + floatv::width);
-    CHECK(s.spheres.r2.size() == 5 + floatv::width);
-    for (size_t i = 5; i < s.spheres.r2.size(); ++i) CHECK(s.spheres.r2[i] < 0);
+    CHECK(s.set<sphere_set>().x.size() == 5 + floatv::width);
+    CHECK(s.set<sphere_set>().r2.size() == 5 + floatv::width);
+    for (size_t i = 5; i < s.set<sphere_set>().r2.size(); ++i) CHECK(s.set<sphere_set>().r2[i] < 0);
     CHECK(s.unbounded_user_shapes.empty());
     CHECK_FALSE(s.has_user_materials);
 
     // One table entry per distinct material, shared by pointer.
     REQUIRE(s.materials.size() == 3);
-    CHECK(s.spheres.material[0] == s.spheres.material[1]);
-    CHECK(s.spheres.material[0] == s.spheres.material[4]);
-    const compiled_material& lam = s.materials[s.spheres.material[0]];
-    CHECK(lam.kind == material_kind::lambertian);
-    CHECK(lam.albedo.x == 0.5f);
-    const compiled_material& met = s.materials[s.spheres.material[2]];
-    CHECK(met.kind == material_kind::metal);
-    CHECK(met.fuzz == 0.4f);
-    CHECK(met.albedo.z == 0.3f);
-    const compiled_material& gl = s.materials[s.spheres.material[3]];
-    CHECK(gl.kind == material_kind::dielectric);
-    CHECK(gl.refraction_index == 1.33f);
+    CHECK(s.set<sphere_set>().material[0] == s.set<sphere_set>().material[1]);
+    CHECK(s.set<sphere_set>().material[0] == s.set<sphere_set>().material[4]);
+    const compiled_material& lam = s.materials[s.set<sphere_set>().material[0]];
+    CHECK(lam.is<lambertian_bsdf>());
+    CHECK(lam.as<lambertian_bsdf>().albedo.x == 0.5f);
+    const compiled_material& met = s.materials[s.set<sphere_set>().material[2]];
+    CHECK(met.is<metal_bsdf>());
+    CHECK(met.as<metal_bsdf>().fuzz == 0.4f);
+    CHECK(met.as<metal_bsdf>().albedo.z == 0.3f);
+    const compiled_material& gl = s.materials[s.set<sphere_set>().material[3]];
+    CHECK(gl.is<dielectric_bsdf>());
+    CHECK(gl.as<dielectric_bsdf>().refraction_index == 1.33f);
 
     // 17 spheres in a row get a BVH (more than one leaf's worth).
     hittable_list many;
     for (int i = 0; i < 17; ++i) many.add(std::make_shared<sphere>(point3(i, 0, -5), 0.1, shared));
     compiled_scene m = compile_scene(many, point3(0, 0, 0));
-    CHECK(m.spheres.count == 17);
-    CHECK(m.spheres.x.size() == 17 + floatv::width);
+    CHECK(m.set<sphere_set>().count == 17);
+    CHECK(m.set<sphere_set>().x.size() == 17 + floatv::width);
     CHECK_FALSE(m.bvh.nodes.empty());
 
     // Empty world: nothing to hit.
     hittable_list none;
     compiled_scene e = compile_scene(none, point3(0, 0, 0));
-    CHECK(e.spheres.count == 0);
+    CHECK(e.set<sphere_set>().count == 0);
     ray3f r;
     r.dir = {0, 0, -1};
     surface_hit hit;
@@ -155,7 +155,7 @@ TEST_CASE("compile_scene: user shapes and materials are kept for the virtual pat
     CHECK(s.unbounded_user_shapes[0] == user_shape.get());
     CHECK(s.has_user_materials);
     REQUIRE(s.materials.size() == 1);
-    CHECK(s.materials[0].kind == material_kind::user);
+    CHECK(s.materials[0].is<user_bsdf>());
     CHECK(s.materials[0].source != nullptr);
 }
 
@@ -230,7 +230,7 @@ TEST_CASE("compile_scene: back-face culling skips back faces of the marked mater
     world.add(square_at(-2, opaque));
     world.add(square_at(-4, glass));
     compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    const uint32_t opaque_index = scene.materials[0].kind == material_kind::lambertian ? 0 : 1;
+    const uint32_t opaque_index = scene.materials[0].is<lambertian_bsdf>() ? 0 : 1;
     scene.set_back_face_culling([&](uint32_t m) { return m == opaque_index; });
 
     surface_hit hit;
@@ -320,7 +320,7 @@ TEST_CASE("compile_scene: a scene of one shape kind is walked by that kind's ker
     const compiled_scene a = compile_scene(spheres_only, point3(0, 0, 0));
     const compiled_scene b = compile_scene(mixed, point3(0, 0, 0));
     REQUIRE(a.single_kind.has_value());
-    CHECK(*a.single_kind == shape_kind::sphere);
+    CHECK(*a.single_kind == shape_id<sphere_set>);
     CHECK_FALSE(b.single_kind.has_value());
     REQUIRE(a.bvh.stats.nodes > 0);
 
@@ -328,7 +328,7 @@ TEST_CASE("compile_scene: a scene of one shape kind is walked by that kind's ker
     triangles_only.add(std::make_shared<triangle>(point3(0, 0, -1), point3(1, 0, -1), point3(0, 1, -1), m));
     const compiled_scene t = compile_scene(triangles_only, point3(0, 0, 0));
     REQUIRE(t.single_kind.has_value());
-    CHECK(*t.single_kind == shape_kind::triangle);
+    CHECK(*t.single_kind == shape_id<triangle_set>);
     CHECK_FALSE(compile_scene(hittable_list(), point3(0, 0, 0)).single_kind.has_value());
 
     long hits = 0;

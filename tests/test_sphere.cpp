@@ -269,7 +269,7 @@ TEST_CASE("compiled_scene::intersect from outside") {
     // relative to it. Centre = eye + (0,0,-5), r = 1: t = 4.
     const point3 eye(13, 2, 3);
     compiled_scene s = compile_one(eye + vec3(0, 0, -5), 1, eye, world);
-    CHECK(s.spheres.count == 1);
+    CHECK(s.set<sphere_set>().count == 1);
     surface_hit hit;
     REQUIRE(s.intersect(make_ray(s, eye, vec3(0, 0, -1)), hit));
     CHECK(hit.t == doctest::Approx(4).epsilon(1e-6));
@@ -279,7 +279,7 @@ TEST_CASE("compiled_scene::intersect from outside") {
     CHECK(hit.front_face);
     CHECK(hit.material == 0);
     CHECK(hit.user_shape == nullptr);
-    CHECK(s.materials.at(hit.material).kind == material_kind::lambertian);
+    CHECK(s.materials.at(hit.material).is<lambertian_bsdf>());
 }
 
 TEST_CASE("compiled_scene::intersect from inside") {
@@ -353,7 +353,7 @@ TEST_CASE("compiled_scene::intersect picks the closest of many spheres") {
     std::shuffle(order.begin(), order.end(), gen);
     for (int k : order) world.add(std::make_shared<sphere>(point3(0, 0, -3.0 * k), 1, grey()));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
-    CHECK(s.spheres.count == 40);
+    CHECK(s.set<sphere_set>().count == 40);
     surface_hit hit;
     REQUIRE(s.intersect(make_ray(s, point3(0, 0, 0), vec3(0, 0, -1)), hit));
     CHECK(hit.t == doctest::Approx(2).epsilon(1e-6));

@@ -163,9 +163,7 @@ TEST_CASE("chi2: sample_cosine_direction is cos(theta)/pi about axis and non-axi
 }
 
 TEST_CASE("chi2: the Lambertian material's sample() scatters cos(theta)/pi about the normal") {
-    compiled_material m;
-    m.kind = material_kind::lambertian;
-    m.albedo = {0.3f, 0.6f, 0.9f};
+    const compiled_material m = compiled_material::of(lambertian_bsdf{{0.3f, 0.6f, 0.9f}});
     const vec3 n = unit_vector(vec3(0.5, -0.2, 0.8));
     const vec3f wi = normalize(vec3f(-0.3f, 0.4f, -0.9f)); // any incoming direction facing n
     pcg32 rng(77);
@@ -437,10 +435,7 @@ void fuzz_counts(const fuzz_case& fc, long N, pcg32& rng, std::vector<double>& o
     const vec3 mirror = wi - 2 * dot(wi, n) * n;
     fuzz_model model(mirror, n, fc.fuzz);
 
-    compiled_material metal_desc;
-    metal_desc.kind = material_kind::metal;
-    metal_desc.albedo = {0.9f, 0.8f, 0.7f};
-    metal_desc.fuzz = float(fc.fuzz);
+    const compiled_material metal_desc = compiled_material::of(metal_bsdf{{0.9f, 0.8f, 0.7f}, float(fc.fuzz)});
 
     const int cells = fuzz_model::nc * fuzz_model::np;
     obs.assign(cells + 2, 0); // + absorbed + impossible
@@ -532,9 +527,7 @@ long count_reflections(const glass_case& g, float kernel_ior, long N, pcg32& rng
     const double th = g.angle_deg * pi_d / 180;
     const vec3 wi = -std::cos(th) * n + std::sin(th) * t;
     const double ri = g.front_face ? 1 / g.ior : g.ior;
-    compiled_material glass;
-    glass.kind = material_kind::dielectric;
-    glass.refraction_index = kernel_ior;
+    const compiled_material glass = compiled_material::of(dielectric_bsdf{kernel_ior});
     long reflected = 0;
     for (long i = 0; i < N; ++i) {
         vec3f dir, att;
@@ -743,15 +736,17 @@ TEST_CASE("energy: every built-in kernel returns attenuation in [0, 1] and unit 
     pcg32 rng(51);
     long scattered = 0, absorbed = 0;
     for (int i = 0; i < 100000; ++i) {
-        compiled_material m;
-        m.kind = static_cast<material_kind>(rng.next_u32() % 3);
+        const uint32_t kind = rng.next_u32() % 3; // lambertian, metal or the book's glass
         auto u = [&] {
             float v = rng.next_float();
             return v < 0.05f ? 0.0f : (v > 0.95f ? 1.0f : v);
         };
-        m.albedo = {u(), u(), u()};
-        m.fuzz = u();
-        m.refraction_index = 0.2f + 4.8f * rng.next_float();
+        const vec3f albedo{u(), u(), u()};
+        const float fuzz = u();
+        const float ri = 0.2f + 4.8f * rng.next_float();
+        const compiled_material m = kind == 0   ? compiled_material::of(lambertian_bsdf{albedo})
+                                    : kind == 1 ? compiled_material::of(metal_bsdf{albedo, fuzz})
+                                                : compiled_material::of(dielectric_bsdf{ri});
         vec3f n = sample_unit_sphere(rng.next_float(), rng.next_float());
         vec3f wi = sample_unit_sphere(rng.next_float(), rng.next_float());
         if (dot(wi, n) > 0) wi = -1.0f * wi; // facing the normal
@@ -759,18 +754,18 @@ TEST_CASE("energy: every built-in kernel returns attenuation in [0, 1] and unit 
         vec3f dir, att;
         if (!test::sample_direction(m, wi, n, front, rng, dir, att)) {
             ++absorbed;
-            CHECK(m.kind == material_kind::metal); // only fuzzy metal absorbs
+            CHECK(m.is<metal_bsdf>()); // only fuzzy metal absorbs
             continue;
         }
         ++scattered;
-        CAPTURE(int(m.kind));
+        CAPTURE(kind);
         REQUIRE(is_finite(dir));
         REQUIRE(std::fabs(length(dir) - 1) < 1e-5f);
         for (int k = 0; k < 3; ++k) REQUIRE((att[k] >= 0 && att[k] <= 1));
-        if (m.kind == material_kind::dielectric) {
+        if (m.is<dielectric_bsdf>()) {
             REQUIRE((att.x == 1 && att.y == 1 && att.z == 1));
         } else {
-            REQUIRE((att.x == m.albedo.x && att.y == m.albedo.y && att.z == m.albedo.z));
+            REQUIRE((att.x == albedo.x && att.y == albedo.y && att.z == albedo.z));
             REQUIRE(dot(dir, n) > -1e-6f);
         }
     }

@@ -426,19 +426,11 @@ TEST_CASE("stress: material sample() at grazing and wrong-side incidence returns
     // Incidence with wi.n = 0 (tangent) and with wi slightly on the normal's own side (which
     // float error can produce for grazing hits): every material must return a finite unit
     // direction and an attenuation in [0, 1], or absorb.
-    compiled_material lamb;
-    lamb.kind = material_kind::lambertian;
-    lamb.albedo = {0.5f, 0.5f, 0.5f};
-    compiled_material mirror;
-    mirror.kind = material_kind::metal;
-    mirror.albedo = {1, 1, 1};
-    compiled_material fuzzy = mirror;
-    fuzzy.fuzz = 0.7f;
-    compiled_material glass;
-    glass.kind = material_kind::dielectric;
-    glass.refraction_index = 1.5f;
-    compiled_material bubble = glass;
-    bubble.refraction_index = 1.0f / 1.5f;
+    const compiled_material lamb = compiled_material::of(lambertian_bsdf{{0.5f, 0.5f, 0.5f}});
+    const compiled_material mirror = compiled_material::of(metal_bsdf{{1, 1, 1}, 0});
+    const compiled_material fuzzy = compiled_material::of(metal_bsdf{{1, 1, 1}, 0.7f});
+    const compiled_material glass = compiled_material::of(dielectric_bsdf{1.5f});
+    const compiled_material bubble = compiled_material::of(dielectric_bsdf{1.0f / 1.5f});
     const compiled_material mats[] = {lamb, mirror, fuzzy, glass, bubble};
 
     const vec3f n = normalize(vec3f(0.2f, 1, -0.3f));
@@ -453,7 +445,7 @@ TEST_CASE("stress: material sample() at grazing and wrong-side incidence returns
                     vec3f dir, att;
                     if (!test::sample_direction(m, wi, n, front, rng, dir, att)) continue;
                     ++scattered;
-                    CAPTURE(int(m.kind));
+                    CAPTURE(m.kind());
                     CAPTURE(e);
                     REQUIRE(is_finite(dir));
                     REQUIRE(std::fabs(length(dir) - 1) < 1e-5f);
@@ -632,9 +624,7 @@ TEST_CASE("stress: total internal reflection beyond the critical angle always re
     for (const vec3& nd : normals) {
         const vec3 td = unit_vector(cross(nd, vec3(1, 0.5, 0.25)));
         for (const medium& md : media) {
-            compiled_material glass;
-            glass.kind = material_kind::dielectric;
-            glass.refraction_index = float(md.ior);
+            const compiled_material glass = compiled_material::of(dielectric_bsdf{float(md.ior)});
             const double ri = md.front_face ? 1 / md.ior : md.ior; // ratio n_incident / n_transmitted
             const double critical = std::asin(1 / ri) * 180 / pi_d;
             for (double a : {critical + 0.05, critical + 1, 0.5 * (critical + 90), 80.0, 89.9}) {

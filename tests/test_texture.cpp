@@ -409,7 +409,7 @@ TEST_CASE("render: a checker emitter seen directly shows its texture colour in e
                                      std::make_shared<diffuse_light>(checker)));
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
     REQUIRE(scene.materials.size() == 1);
-    CHECK(scene.materials[0].kind == material_kind::diffuse_light); // not the virtual fallback
+    CHECK(scene.materials[0].is<emitter_bsdf>()); // not the virtual fallback
     CHECK(scene.materials[0].texture != no_texture);
     CHECK_FALSE(scene.calls_user_code());
     rt::camera cam = straight_on(4);

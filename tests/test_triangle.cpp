@@ -114,8 +114,8 @@ TEST_CASE("triangle: compiled hit matches the hand-worked values, in float") {
     hittable_list world;
     world.add(std::make_shared<triangle>(point3(0, 0, -1), point3(1, 0, -1), point3(0, 1, -1), grey()));
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
-    CHECK(s.triangles.count == 1);
-    CHECK(s.spheres.count == 0);
+    CHECK(s.set<triangle_set>().count == 1);
+    CHECK(s.set<sphere_set>().count == 0);
     surface_hit hit;
     REQUIRE(s.intersect(make_ray(s, point3(0, 0, 0), vec3(0.25, 0.25, -1)), hit));
     CHECK(hit.t == doctest::Approx(std::sqrt(0.25 * 0.25 * 2 + 1)).epsilon(1e-6));
@@ -177,7 +177,7 @@ TEST_CASE("triangle: a closed mesh has no leaks, near and far from the origin") 
         hittable_list world;
         world.add(icosphere(centre, 2.0, 3)); // 1280 triangles
         compiled_scene s = compile_scene(world, centre + vec3(0.3, -0.2, 0.1));
-        CHECK(s.triangles.distinct == 1280);
+        CHECK(s.set<triangle_set>().distinct == 1280);
         CHECK_FALSE(s.bvh.nodes.empty());
         pcg32 rng = sample_rng(11, 0, 0);
         surface_hit hit;
@@ -218,8 +218,8 @@ TEST_CASE("BVH: closest hits of spheres and triangles agree with brute force in 
         world.add(std::make_shared<sphere>(point3(20 * u() - 10, 20 * u() - 10, 20 * u() - 10), 0.05 + 0.5 * u(), m));
     const point3 origin(1, 2, 3);
     compiled_scene s = compile_scene(world, origin);
-    CHECK(s.triangles.distinct == 3000);
-    CHECK(s.spheres.count == 300);
+    CHECK(s.set<triangle_set>().distinct == 3000);
+    CHECK(s.set<sphere_set>().count == 300);
     CHECK(s.bvh.stats.depth >= 2);
 
     int disagree = 0, hits = 0;
@@ -265,15 +265,15 @@ TEST_CASE("BVH with spatial splits: closest and any hits agree with brute force,
     }
     const point3 origin(-1, 2, 0.5);
     compiled_scene s = compile_scene(world, origin);
-    CHECK(s.triangles.distinct == 3000);
-    CHECK(s.triangles.count > s.triangles.distinct); // some triangles were split
+    CHECK(s.set<triangle_set>().distinct == 3000);
+    CHECK(s.set<triangle_set>().count > s.set<triangle_set>().distinct); // some triangles were split
     // One light per emitting triangle, however many copies of it the leaves hold, and every copy
     // names its triangle's light.
     CHECK(s.lights.lights.size() == size_t(emitters));
-    const auto& order = s.bvh.order[size_t(shape_kind::triangle)];
+    const auto& order = s.bvh.order[size_t(shape_id<triangle_set>)];
     std::map<uint32_t, uint32_t> light_of;
-    for (size_t k = 0; k < s.triangles.count; ++k) {
-        const uint32_t l = s.lights.light_at(shape_kind::triangle, uint32_t(k));
+    for (size_t k = 0; k < s.set<triangle_set>().count; ++k) {
+        const uint32_t l = s.lights.light_at(shape_id<triangle_set>, uint32_t(k));
         if (l == light_set::none) continue;
         const auto [it, is_new] = light_of.try_emplace(order[k], l);
         CHECK(it->second == l);
@@ -324,8 +324,8 @@ TEST_CASE("triangle: invalid input is rejected, degenerate mesh triangles are sk
         w.add(std::make_shared<triangle_mesh>(std::vector<point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
                                               std::vector<std::array<uint32_t, 3>>{{0, 1, 2}, {0, 1, 1}}, m));
         compiled_scene s = compile_scene(w, point3(0, 0, 5));
-        CHECK(s.triangles.count == 1);
-        CHECK(s.triangles.degenerate == 1);
+        CHECK(s.set<triangle_set>().count == 1);
+        CHECK(s.set<triangle_set>().degenerate == 1);
     }
     {
         hittable_list w;

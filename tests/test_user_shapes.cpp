@@ -86,7 +86,7 @@ TEST_CASE("user shapes with a bounding box go into the BVH, those without one do
     world.add(nan_box);
     world.add(far_box);
     compiled_scene s = compile_scene(world, point3(0, 0, 0));
-    CHECK(s.user_shapes.shapes.size() == boxed.size());
+    CHECK(s.set<user_shape_set>().shapes.size() == boxed.size());
     REQUIRE(s.unbounded_user_shapes.size() == 4);
     CHECK(s.unbounded_user_shapes[0] == unboxed.get());
     CHECK(s.bvh.stats.nodes > 10);

@@ -103,8 +103,8 @@ TEST_CASE("constant_medium: scattering points are exponentially distributed alon
         sum2 += s * s;
         if (hits == 1) {
             CHECK(rec.mat == fog.phase_function());
-            CHECK(compile_material(*rec.mat).kind == material_kind::isotropic);
-            CHECK(compile_material(*rec.mat).albedo.z == doctest::Approx(0.9f));
+            CHECK(compile_material(*rec.mat).is<isotropic_phase>());
+            CHECK(compile_material(*rec.mat).as<isotropic_phase>().albedo.z == doctest::Approx(0.9f));
         }
     }
     const double mean = sum / hits, var = sum2 / hits - mean * mean;
@@ -161,8 +161,8 @@ compiled_medium compile_medium(const std::shared_ptr<hittable>& boundary, double
     hittable_list world;
     world.add(std::make_shared<constant_medium>(boundary, sigma, color(1, 1, 1)));
     compiled_medium c{compile_scene(world, point3(0, 0, 0))};
-    REQUIRE(c.scene.user_shapes.shapes.size() == 1);
-    c.shape = c.scene.user_shapes.shapes[0];
+    REQUIRE(c.scene.set<user_shape_set>().shapes.size() == 1);
+    c.shape = c.scene.set<user_shape_set>().shapes[0];
     c.convex = !c.scene.owned_user_shapes.empty() && c.shape == c.scene.owned_user_shapes[0].get();
     return c;
 }
@@ -236,7 +236,7 @@ TEST_CASE("convex_medium: the scattering points constant_medium::hit finds, draw
         ++hits;
         CHECK(a.t == doctest::Approx(b.t).epsilon(1e-9));
         CHECK(a.front_face);
-        if (hits == 1) CHECK(compile_material(*a.mat).kind == material_kind::isotropic); // the medium's phase function
+        if (hits == 1) CHECK(compile_material(*a.mat).is<isotropic_phase>()); // the medium's phase function
     }
     CHECK(hits > 1000); // enough of the rays cross the fog (about 1 in 10)
 }
@@ -277,7 +277,7 @@ TEST_CASE("constant_medium: the compiled scene's shadow query is an unbiased tra
     world.add(std::make_shared<constant_medium>(
         std::make_shared<sphere>(point3(0, 0, -4), 2, white_phase()), sigma, color(1, 1, 1)));
     const compiled_scene scene = compile_scene(world, point3(0, 0, 0));
-    REQUIRE(scene.user_shapes.shapes.size() == 1);
+    REQUIRE(scene.set<user_shape_set>().shapes.size() == 1);
     pcg32 rng(21);
     detail::scoped_sample_rng guard(rng);
     const long n = 100000;

@@ -38,8 +38,8 @@ class in_place_array {
     int size() const { return size_; }
 
   private:
+    int size_ = 0; // first: an empty array's one written word shares the line of what precedes it
     alignas(T) unsigned char storage_[N * sizeof(T)];
-    int size_ = 0;
 };
 
 } // namespace rt

@@ -55,7 +55,7 @@
 #include "../core/input_limits.h"
 #include "../whitted_material.h"
 #include "whitted_scene.h"
-#include "../core/bsdf.h"
+#include "../core/material_kinds.h"
 #include "../scene/compiled_scene.h"
 #include "../core/ray_offset.h"
 #include "../render/render_settings.h"
@@ -131,7 +131,7 @@ class whitted_renderer {
     struct branch {
         ray3f ray;
         vec3f weight;            // the lobe's sample value
-        vec3f absorption{0, 0, 0}; // of the glass the ray travels inside, when `absorbing`
+        compiled_material medium; // the glass the ray travels inside, when `absorbing`
         bool absorbing = false;
     };
     // One surface on the path from the camera: what the recursion kept in a call's locals.
@@ -183,7 +183,7 @@ void write_whitted_image(const std::string& path, const image& img);
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 inline whitted_terms whitted_terms::of(const compiled_material& m) {
-    if (m.kind == material_kind::user)
+    if (m.is_user())
         throw scene_error("the Whitted integrator cannot shade a user-written material (it has only scatter()): "
                           "use whitted_material or a built-in material");
     whitted_terms t;
@@ -287,8 +287,7 @@ inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int d
     const whitted_terms& terms = hit.user_shape ? *reported_terms : terms_[hit.material];
     // The course's rule for glass seen from inside (whitted_options::shade_inside_dielectrics):
     // no ambient, diffuse or specular term there, and so no shadow rays.
-    const bool glass = m.kind == material_kind::dielectric || m.kind == material_kind::fresnel_dielectric;
-    const bool from_inside_glass = glass && !hit.front_face;
+    const bool from_inside_glass = m.refracts() && !hit.front_face;
     f.L = from_inside_glass && !options_.shade_inside_dielectrics ? vec3f{0, 0, 0} : shade(hit, r, m, terms, rays);
     f.count = f.taken = 0;
     if (depth >= max_recursion_depth_) return;
@@ -312,7 +311,7 @@ inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int d
         b.ray = spawn(hit, transmitted ? -hit.normal : hit.normal, s.wi);
         b.weight = s.value;
         b.absorbing = inside && m.absorbs_inside();
-        b.absorption = m.absorption; // m.transmittance(d) is beer_transmittance(absorption, d) when it absorbs
+        if (b.absorbing) b.medium = m;
     }
 }
 
@@ -351,7 +350,7 @@ inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays)
         frame next;
         if (b.absorbing) {
             next.attenuated = true;
-            next.attenuation = beer_transmittance(b.absorption, hit.t);
+            next.attenuation = b.medium.transmittance(hit.t);
         }
         next.weight = next.attenuated ? weight * next.attenuation : weight;
         open(hit, b.ray, int(stack.size()), rng, rays, next);

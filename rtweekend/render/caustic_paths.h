@@ -59,7 +59,7 @@
 // (importance: camera_frame::connect; cos_s against the shading normal, which eval includes;
 // cos_g against the geometric one, the measure the path arrived in).
 
-#include "../core/bsdf.h"
+#include "../core/material_kinds.h"
 #include "camera_frame.h"
 #include "../scene/compiled_scene.h"
 #include "../scene/light_set.h"
@@ -93,7 +93,7 @@ inline bool traces_caustics(const compiled_scene& scene) {
 // A vertex that a caustic path may pass: a built-in surface (no user shape, no volume), shaded with
 // its geometric normal.
 inline bool caustic_vertex(const surface_hit& hit, const compiled_material& m) {
-    return !hit.user_shape && m.kind != material_kind::user && m.kind != material_kind::isotropic && !hit.smooth_shaded();
+    return !hit.user_shape && !m.is_user() && !m.is_phase_function() && !hit.smooth_shaded();
 }
 
 namespace detail {
@@ -112,37 +112,8 @@ inline float light_path_start_density(const light& l, float pmf) {
 // places instances): a light path whose first ray misses it meets no delta vertex first.
 inline box3f delta_shape_bounds(const compiled_scene& scene) {
     box3f b;
-    if (scene.instances.count() > 0) {
-        const float inf = std::numeric_limits<float>::infinity();
-        b.grow(vec3f{-inf, -inf, -inf});
-        b.grow(vec3f{inf, inf, inf});
-        return b;
-    }
     auto delta = [&](uint32_t material) { return scene.materials[material].has_delta_lobe(); };
-    auto ball = [&](const vec3f& c, float r) {
-        b.grow(c - vec3f{r, r, r});
-        b.grow(c + vec3f{r, r, r});
-    };
-    const sphere_set& sp = scene.spheres;
-    for (size_t i = 0; i < sp.count; ++i)
-        if (delta(sp.material[i])) ball({sp.x[i], sp.y[i], sp.z[i]}, sp.r[i]);
-    const moving_sphere_set& ms = scene.moving_spheres;
-    for (size_t i = 0; i < ms.count; ++i)
-        if (delta(ms.material[i])) {
-            ball(ms.center(uint32_t(i), 0.0f), ms.r[i]);
-            ball(ms.center(uint32_t(i), 1.0f), ms.r[i]);
-        }
-    const quad_set& qs = scene.quads;
-    for (size_t i = 0; i < qs.count; ++i)
-        if (delta(qs.material[i])) {
-            const vec3f q = qs.corner(uint32_t(i)), u = qs.edge_u(uint32_t(i)), v = qs.edge_v(uint32_t(i));
-            for (const vec3f& p : {q, q + u, q + v, q + u + v}) b.grow(p);
-        }
-    const triangle_set& ts = scene.triangles;
-    for (size_t i = 0; i < ts.count; ++i)
-        if (delta(ts.material[i]))
-            for (int k = 0; k < 3; ++k)
-                b.grow(vec3f{ts.vertex[3 * k][i], ts.vertex[3 * k + 1][i], ts.vertex[3 * k + 2][i]});
+    for_each_kind<shape_kinds>([&](auto k) { scene.set<typename decltype(k)::type>().bound_where(scene, delta, b); });
     if (b.empty()) return b;
     // Grown by a margin, so that rounding in the slab test below never misses a shape.
     const vec3f pad = 1e-4f * (b.hi - b.lo) + vec3f{1e-3f, 1e-3f, 1e-3f} +
@@ -190,8 +161,7 @@ struct caustic_light_vertices {
         bool front_face = true;
         vec3f wi;                        // back along the light path, towards the light
         vec3f throughput;                // what the light path carries on arrival
-        uint32_t material;               // its index in the compiled scene's table
-        vec3f colour;                    // a textured material's colour at p
+        compiled_material material;      // its material (a textured one's coloured at p)
         int vertices;                    // the path's vertices between the light and p
     };
     // Built as the path reaches them: a camera path of a render without caustics holds an empty
@@ -320,61 +290,13 @@ class caustic_splats {
 
 namespace detail {
 
-// The probability the path tracer would have chosen a refraction, seen from the side the light
-// path leaves to, over the probability the light path chose it with: 1 but for the book's Schlick
-// glass (see the top). n: the unit normal; wo: back along the arriving light path, on the side
-// `front` says; s: the refraction drawn.
-inline float schlick_reversal_ratio(const compiled_material& m, const vec3f& n, const vec3f& wo, bool front,
-                                    const material_sample& s) {
-    if (m.kind != material_kind::dielectric || s.sampled != delta_transmission) return 1.0f;
-    auto transmitted = [&](float cos_theta, bool front_face) {
-        const float ri = front_face ? 1.0f / m.refraction_index : m.refraction_index;
-        cos_theta = fmin_inline(cos_theta, 1.0f);
-        const float sin_theta = sqrt_f(fmax_inline(0.0f, 1.0f - cos_theta * cos_theta));
-        if (ri * sin_theta > 1.0f) return 0.0f;
-        return 1.0f - schlick_reflectance(cos_theta, ri);
-    };
-    const float mine = transmitted(std::fabs(dot(wo, n)), front);
-    const float theirs = transmitted(std::fabs(dot(s.wi, n)), !front);
-    return mine > 0 ? theirs / mine : 0.0f;
-}
-
 // Where a light path starts: a point of light l (chosen with probability pmf; density, its
 // light_path_start_density, worked out once per render), a direction, and the throughput the path
 // carries. False when l is textured (left to the path tracer) or degenerate (density 0).
 template <class Uniform>
 bool start_light_path(const light& l, float pmf, float density, Uniform& u, ray3f& r, vec3f& throughput) {
     if (!(density > 0)) return false;
-    const auto [u1, u2] = draw_2d(u);
-    if (l.kind == light_kind::point) {
-        r.origin = l.p0;
-        r.dir = sample_unit_sphere(u1, u2);
-        throughput = l.emission * (4.0f * pi_f / pmf);
-        return true;
-    }
-    vec3f y, n;
-    switch (l.kind) {
-    case light_kind::sphere:
-        n = sample_unit_sphere(u1, u2);
-        y = l.p0 + l.radius * n;
-        break;
-    case light_kind::quad:
-        n = normalize(cross(l.p1, l.p2));
-        y = l.p0 + u1 * l.p1 + u2 * l.p2;
-        break;
-    case light_kind::triangle: {
-        n = normalize(cross(l.p1 - l.p0, l.p2 - l.p0));
-        const barycentric b = uniform_triangle_point(u1, u2);
-        y = b.b0 * l.p0 + b.b1 * l.p1 + b.b2 * l.p2;
-        break;
-    }
-    case light_kind::point: break;
-    }
-    if (l.two_sided && u.next_float() < 0.5f) n = -n;
-    const auto [v1, v2] = draw_2d(u);
-    r.dir = sample_cosine_direction(n, v1, v2);
-    r.origin = offset_ray_origin(y, n);
-    throughput = l.emission * (pi_f / density); // Le cos / (density cos / pi)
+    l.visit([&](const auto& e) { e.start_path(l.emission, l.two_sided, pmf, density, u, r, throughput); });
     return true;
 }
 
@@ -388,7 +310,7 @@ inline const compiled_material* light_path_step(const compiled_scene& scene, con
     const compiled_material& stored = scene.materials[hit.material];
     if (stored.texture != no_texture) looked_up = textured(scene, stored, hit);
     const compiled_material& m = stored.texture != no_texture ? looked_up : stored;
-    if (!caustic_vertex(hit, m) || m.kind == material_kind::diffuse_light) return nullptr;
+    if (!caustic_vertex(hit, m) || !m.scatters()) return nullptr;
     if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
     return &m;
 }
@@ -458,10 +380,10 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
         } else {
             // An inner vertex (see the top): a Lambertian surface past delta vertices, left by its
             // cosine towards more of them.
-            if (m.kind != material_kind::lambertian || since_delta == 0) return;
+            if (!m.lambertian_only() || since_delta == 0) return;
             since_delta = 0;
         }
-        throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
+        throughput *= s.value * m.reversal_ratio(hit.shading_normal, wi, hit.front_face, s);
         if (detail::is_black(throughput)) return;
         r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
     }
@@ -500,10 +422,9 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_spl
             x.front_face = hit.front_face;
             x.wi = wi;
             x.throughput = throughput;
-            x.material = hit.material;
-            x.colour = m.albedo;
+            x.material = m;
             x.vertices = vertices;
-            if (m.kind != material_kind::lambertian || out.at.size() == caustic_light_vertices::capacity) return;
+            if (!m.lambertian_only() || out.at.size() == caustic_light_vertices::capacity) return;
             since_delta = 0;
         } else {
             ++since_delta;
@@ -511,7 +432,7 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_spl
         material_sample s;
         const shading_point sp{hit.shading_normal, hit.front_face};
         if (!m.sample(wi, sp, u, s)) return;
-        throughput *= s.value * detail::schlick_reversal_ratio(m, hit.shading_normal, wi, hit.front_face, s);
+        throughput *= s.value * m.reversal_ratio(hit.shading_normal, wi, hit.front_face, s);
         if (detail::is_black(throughput)) return;
         r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
     }

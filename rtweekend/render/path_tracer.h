@@ -107,7 +107,7 @@ inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 :
 template <bool UserMaterials>
 struct vertex_material {
     const compiled_material& m;
-    shading_point sp;
+    const shading_point& sp; // the caller's: a copy, written field by field and read back whole, stalled the store buffer
     vec3f wo;
     const user_material_hit* user; // set for a user's material, which has scattered already
     vec3f ng;                      // the geometric normal, on wo's side
@@ -223,9 +223,11 @@ class camera_path {
     int inner_vertices = 0;
     bool left_by_density = false; // the ray left a caustic vertex by its non-delta lobe
     float x_density = 0;
-    caustic_light_vertices light_path;
     const vec3f lens;
     bool done_;
+    // Last: most renders never fill it, and its room should not come between the members a bounce
+    // reads.
+    caustic_light_vertices light_path;
 };
 
 template <path_estimator E, bool UserMaterials>
@@ -273,25 +275,25 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
         }
         radiance += throughput * le * weight;
     }
-    if (m.kind == material_kind::diffuse_light) return finish(); // emitters scatter nothing
+    if (!m.scatters()) return finish(); // emitters scatter nothing
 
     // A user's material: its own emission, counted in full (it is not light-sampled), then
     // its scatter(), asked once.
     std::optional<user_material_hit> user;
-    if (UserMaterials && m.kind == material_kind::user) {
+    if (UserMaterials && m.is_user()) {
         user.emplace(scene, *m.source, r, hit);
         radiance += throughput * user->emitted();
         if (!user->scatter()) return finish();
     }
     const bool smooth = hit.smooth_shaded();
     const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
-                                            smooth && m.kind != material_kind::isotropic};
+                                            smooth && !m.is_phase_function()};
     const bool has_density = vm.has_density();
     // A constant_medium's scattering point (a user shape's hit with the isotropic phase
     // function) is inside the fog, not on a surface: its rays start at the point itself.
     // Pushed off along the medium's arbitrary normal (1, 0, 0) as a surface point is, by 256
     // float ulps of x, its rays would start beside it for no reason.
-    const bool in_volume = hit.user_shape && m.kind == material_kind::isotropic;
+    const bool in_volume = hit.user_shape && m.is_phase_function();
 
     // A light sample's contribution, if its shadow ray is clear: f Le / pdf, weighed by the
     // power heuristic against material sampling (a point light has no rival strategy).
@@ -358,7 +360,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
             x_normal = hit.normal;
         } else if (caustic != caustic_state::none && plain && s.is_delta()) {
             caustic = caustic_state::past_delta;
-        } else if (caustic == caustic_state::past_delta && plain && m.kind == material_kind::lambertian) {
+        } else if (caustic == caustic_state::past_delta && plain && m.lambertian_only()) {
             caustic = caustic_state::inner; // its non-delta lobe sampled: the only one it has
         } else {
             caustic = caustic_state::none;
@@ -369,7 +371,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
             x_density = last_pdf * std::fabs(dot(hit.normal, r.dir)) / (hit.t * hit.t);
         } else if (deep_caustic != caustic_state::none && plain && s.is_delta() && !m.has_non_delta_lobe()) {
             deep_caustic = caustic_state::past_delta;
-        } else if (deep_caustic == caustic_state::past_delta && plain && m.kind == material_kind::lambertian &&
+        } else if (deep_caustic == caustic_state::past_delta && plain && m.lambertian_only() &&
                    inner_vertices + 1 < caustic_light_vertices::capacity) {
             deep_caustic = caustic_state::inner;
             ++inner_vertices;
@@ -415,8 +417,7 @@ void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMa
         const vec3f wo = -dir;
         const bool flip = dot(wo, x.normal) < 0;
         const shading_point sp{flip ? -x.shading_normal : x.shading_normal, flip != x.front_face};
-        compiled_material m = scene.materials[x.material];
-        m.albedo = x.colour; // a textured one's colour at x (else its own)
+        const compiled_material& m = x.material; // a textured one's coloured at x
         const vec3f f_x = m.eval(wo, x.wi, sp);
         const float cos_in = std::fabs(dot(x.normal, x.wi)), cos_out = std::fabs(dot(x.normal, dir));
         if (is_black(f_x) || !(cos_in > 0)) continue;

@@ -19,7 +19,7 @@
 #include "../hittable.h"
 #include "../material.h"
 #include "../pdf.h"
-#include "../core/bsdf.h"
+#include "../core/material_kinds.h"
 #include "../scene/compiled_scene.h"
 #include "../scene/surface_coordinates.h"
 #include "../core/vec3f.h"

@@ -25,6 +25,8 @@
 #include "../core/scene_error.h"
 #include "../core/force_inline.h"
 #include "leaf_query.h"
+#include "shape_kinds.h"
+#include "../core/box3f.h"
 #include "../core/vec3f.h"
 
 #include <algorithm>
@@ -64,57 +66,32 @@ namespace rt {
 #endif
 inline constexpr int bvh_width = RTWEEKEND_BVH_WIDTH;
 
-// An axis-aligned box in float. Empty when lo > hi (the default).
-struct box3f {
-    vec3f lo{+std::numeric_limits<float>::infinity(), +std::numeric_limits<float>::infinity(),
-             +std::numeric_limits<float>::infinity()};
-    vec3f hi{-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-             -std::numeric_limits<float>::infinity()};
-
-    void grow(const vec3f& p) {
-        lo = {fmin_inline(lo.x, p.x), fmin_inline(lo.y, p.y), fmin_inline(lo.z, p.z)};
-        hi = {fmax_inline(hi.x, p.x), fmax_inline(hi.y, p.y), fmax_inline(hi.z, p.z)};
-    }
-    void grow(const box3f& b) {
-        lo = {fmin_inline(lo.x, b.lo.x), fmin_inline(lo.y, b.lo.y), fmin_inline(lo.z, b.lo.z)};
-        hi = {fmax_inline(hi.x, b.hi.x), fmax_inline(hi.y, b.hi.y), fmax_inline(hi.z, b.hi.z)};
-    }
-    // Shrinks to the part inside b (empty when they do not overlap).
-    void clip(const box3f& b) {
-        lo = {fmax_inline(lo.x, b.lo.x), fmax_inline(lo.y, b.lo.y), fmax_inline(lo.z, b.lo.z)};
-        hi = {fmin_inline(hi.x, b.hi.x), fmin_inline(hi.y, b.hi.y), fmin_inline(hi.z, b.hi.z)};
-    }
-    bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
-    vec3f centre() const { return 0.5f * (lo + hi); }
-    // Half the surface area: the SAH only needs areas up to a common factor.
-    float half_area() const {
-        if (empty()) return 0;
-        vec3f e = hi - lo;
-        return e.x * e.y + e.y * e.z + e.z * e.x;
-    }
-};
-
 // What the builder needs to know about one primitive.
 struct bvh_primitive {
     box3f bounds;
-    shape_kind kind = shape_kind::sphere;
+    shape_kind kind{};
     uint32_t index = 0; // the primitive's number among those of its kind
 };
 
-// A reference to a child, 32 bits: an inner node, or a leaf packed into the same bits:
-//   bits 29-31: 0 for an inner node, or 1 + the shape kind of a leaf
-//   an inner node: bits 0-28 its offset in wide_bvh::nodes in units of 32 bytes (its index times
+// A reference to a child, 32 bits: an inner node, or a leaf packed into the same bits. The top
+// kind_bits bits hold 0 for an inner node, or 1 + the shape kind of a leaf: as many bits as the
+// list of shape kinds needs (shape_kinds.h), 3 for up to 7 kinds, 4 for up to 15. Below them:
+//   an inner node: its offset in wide_bvh::nodes in units of 32 bytes (its index times
 //   units_per_node: 7 for a node of 8 children, 224 bytes; 14 for one of 16, 448 bytes), so that
 //   the walk finds its address with one shift and one add; index * 224 took three instructions
 //   more on the walk's critical path, node after node (BENCHMARKS.md section 25)
-//   a leaf: bits 25-28 its count - 1 (1..16), bits 0-24 its first primitive
-// so seven shape kinds fit, each with up to 2^25 (33.5 million) primitives, and up to 2^29 /
-// units_per_node nodes (76.7 million of 8 children, 38.3 million of 16).
+//   a leaf: 4 bits of its count - 1 (1..16), then its first primitive in the rest.
+// With 3 kind bits, each kind may have up to 2^25 (33.5 million) primitives, and there may be up
+// to 2^29 / units_per_node nodes (76.7 million of 8 children, 38.3 million of 16); each kind bit
+// more halves both.
 namespace bvh_ref {
-inline constexpr uint32_t kind_shift = 29;
-inline constexpr int max_shape_kinds = 7;
+inline constexpr uint32_t kind_bits = shape_kind_count < 8 ? 3 : 4;
+static_assert(shape_kind_count < 16, "a leaf reference names at most 15 shape kinds");
+inline constexpr uint32_t kind_shift = 32 - kind_bits;
+inline constexpr int max_shape_kinds = (1 << kind_bits) - 1;
 inline constexpr uint32_t max_leaf_size = 16;
-inline constexpr uint32_t max_first = (1u << 25) - 1;
+inline constexpr uint32_t count_shift = kind_shift - 4;
+inline constexpr uint32_t max_first = (1u << count_shift) - 1;
 inline constexpr uint32_t first_leaf = 1u << kind_shift; // every reference from here up is a leaf
 inline constexpr uint32_t node_unit = 32;                // bytes
 // sizeof(wide_node) / node_unit: six planes and the references, a float or a reference per child
@@ -123,16 +100,15 @@ inline constexpr uint32_t units_per_node =
 // The last node's reference is below first_leaf.
 inline constexpr uint32_t max_nodes = (first_leaf - 1) / units_per_node + 1;
 inline constexpr uint32_t empty = 0xFFFFFFFFu; // the root of a tree without primitives
-static_assert(shape_kind_count <= max_shape_kinds, "a leaf reference names at most seven shape kinds");
 
 constexpr bool is_leaf(uint32_t ref) { return ref >= first_leaf; }
 constexpr uint32_t node_ref(uint32_t index) { return index * units_per_node; }
 constexpr uint32_t node_index(uint32_t ref) { return ref / units_per_node; }
 constexpr shape_kind kind(uint32_t ref) { return static_cast<shape_kind>((ref >> kind_shift) - 1); }
-constexpr uint32_t count(uint32_t ref) { return ((ref >> 25) & 15u) + 1; }
+constexpr uint32_t count(uint32_t ref) { return ((ref >> count_shift) & 15u) + 1; }
 constexpr uint32_t first(uint32_t ref) { return ref & max_first; }
 constexpr uint32_t make_leaf(shape_kind k, uint32_t first, uint32_t count) {
-    return ((uint32_t(k) + 1) << kind_shift) | ((count - 1) << 25) | first;
+    return ((uint32_t(k) + 1) << kind_shift) | ((count - 1) << count_shift) | first;
 }
 } // namespace bvh_ref
 
@@ -154,8 +130,8 @@ struct bvh_build_options {
     float node_cost = 1.0f;
     float primitive_cost = 0.1f;
     // Spatial splits (Stich, Friedrich and Dietrich, "Spatial Splits in Bounding Volume
-    // Hierarchies", HPG 2009): given the corners of the triangles (triangle_corners(index) for
-    // the primitive of kind triangle and that index), a node of triangles may also be split by a
+    // Hierarchies", HPG 2009): given the corners of the triangles (split_corners(index) for the
+    // primitive of kind split_kind and that index), a node of triangles may also be split by a
     // plane through them, a triangle that straddles it going to both sides, each with the box of
     // its own part. The boxes overlap less, and a ray visits fewer nodes and tests fewer
     // triangles; a triangle is then in more than one leaf (order names it more than once).
@@ -165,7 +141,8 @@ struct bvh_build_options {
     // triangle bunny's diffuse rays, 4 % fewer node visits and 2 % fewer triangle tests for a build
     // 2.6 times as long; every node (spatial_min_count 16) and the paper's overlap of 1e-5 gave
     // no fewer visits for twice that build (BENCHMARKS.md section 16).
-    std::function<std::array<vec3f, 3>(uint32_t index)> triangle_corners;
+    shape_kind split_kind{};
+    std::function<std::array<vec3f, 3>(uint32_t index)> split_corners;
     uint32_t spatial_min_count = 256;
     float spatial_overlap = 1e-4f;
     float spatial_budget = 1.3f;
@@ -241,7 +218,7 @@ class bvh_builder {
         options_.bins = std::clamp(options_.bins, 2, max_bins);
         for (size_t i = 0; i < prims.size(); ++i) refs_[i] = {prims[i].bounds, prims[i].bounds.centre(), prims[i].kind, prims[i].index};
         // Spatial splits: only where a node of more than spatial_min_count triangles can exist.
-        spatial_ = options_.triangle_corners && prims.size() > options_.spatial_min_count;
+        spatial_ = options_.split_corners && prims.size() > options_.spatial_min_count;
         if (spatial_) {
             box3f all;
             for (const bvh_primitive& p : prims) all.grow(p.bounds);
@@ -252,9 +229,9 @@ class bvh_builder {
             // The corners, copied once: the search asks for them for every straddling reference.
             uint32_t triangles = 0;
             for (const bvh_primitive& p : prims)
-                if (p.kind == shape_kind::triangle) triangles = std::max(triangles, p.index + 1);
+                if (p.kind == options_.split_kind) triangles = std::max(triangles, p.index + 1);
             corners_.resize(triangles);
-            for (uint32_t i = 0; i < triangles; ++i) corners_[i] = options_.triangle_corners(i);
+            for (uint32_t i = 0; i < triangles; ++i) corners_[i] = options_.split_corners(i);
         }
         // Depth beyond which splits fall back to the object median, which halves the count every
         // level: the binary tree stays shallower than forced_median_depth + log2(n) < 96, so the
@@ -364,7 +341,7 @@ class bvh_builder {
         // The references made (copies of split triangles) and the room refs_ takes (a split
         // appends its right side) both stay bounded: the work and memory of a build are O(n).
         const bool may_split_spatially = spatial_ && count > options_.spatial_min_count && !mixed &&
-                                         refs_[first].kind == shape_kind::triangle && depth < forced_median_depth &&
+                                         refs_[first].kind == options_.split_kind && depth < forced_median_depth &&
                                          references_ < reference_budget_ && refs_.size() + count <= room_;
         if (may_split_spatially && parent_area > 0 &&
             (best_axis < 0 || overlap_area(best_left, best_right) > min_overlap_)) {
@@ -650,7 +627,8 @@ class bvh_builder {
             shape_kind kind = refs_[node.first].kind;
             auto& order = out.order[size_t(kind)];
             if (order.size() + node.count > size_t(bvh_ref::max_first) + 1)
-                throw scene_error("too many shapes of one kind for the BVH (at most 2^25 = 33554432)");
+                throw scene_error("too many shapes of one kind for the BVH (at most " +
+                                  std::to_string(size_t(bvh_ref::max_first) + 1) + ")");
             auto first = uint32_t(order.size());
             for (uint32_t i = node.first; i < node.first + node.count; ++i) order.push_back(refs_[i].index);
             return bvh_ref::make_leaf(kind, first, node.count);

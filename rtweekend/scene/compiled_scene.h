@@ -3,36 +3,31 @@
 //
 //   scene.intersect(ray, hit)   the closest hit        scene.occluded(ray)   any hit at all
 //
-// It holds one set per shape kind (sphere_set.h, triangle_set.h, quad_set.h, user_shape_set.h,
-// moving_sphere_set.h, instance_set.h), each in the order of the leaves of one BVH over all of
-// them (bvh.h), and the table of built-in materials (bsdf.h). An instance's leaf walks its
-// object, a compiled_scene of its own (objects), in the object's frame: a two-level BVH. User-written hittables are called through their virtual hit(): from the BVH when they
-// report a bounding box, after it (for every ray) when they do not. Positions are relative to
-// `origin` (the camera).
+// It holds one set per shape kind (shape_kinds.h lists them; scene/shapes/ holds them), each in
+// the order of the leaves of one BVH over all of them (bvh.h), and the table of built-in
+// materials (the material contract, core/bsdf.h). An instance's leaf walks its object, a
+// compiled_scene of its own (objects), in the object's frame: a two-level BVH. User-written
+// hittables are called through their virtual hit(): from the BVH when they report a bounding box,
+// after it (for every ray) when they do not. Positions are relative to `origin`.
 //
 // One dispatch: a query walks the BVH and hands each leaf to the kernel of the leaf's shape kind
-// (leaf_kernel below; with_shape_kind maps a kind to its kernel). A scene pays only for what it
-// has: when all its shapes are of one kind (the book's scenes are all spheres, a mesh all
-// triangles) the walk calls that kind's kernel directly, without asking each leaf its kind; the
-// triangle test's ray set-up is made at the first triangle leaf a ray reaches; and a scene of a
-// handful of shapes has no BVH nodes at all.
+// (leaf_kernel below; with_shape_kind maps a kind's number to the kind, from the list). A scene
+// pays only for what it has: when all its shapes are of one kind (the book's scenes are all
+// spheres, a mesh all triangles) the walk calls that kind's kernel directly, without asking each
+// leaf its kind; the triangle test's ray set-up is made at the first triangle leaf a ray reaches;
+// and a scene of a handful of shapes has no BVH nodes at all.
 
 #include "../core/constants.h"
 #include "../hittable.h"
-#include "../core/bsdf.h"
+#include "../core/material_kinds.h"
 #include "bvh.h"
 #include "../core/force_inline.h"
 #include "../core/in_place_array.h"
-#include "instance_set.h"
 #include "leaf_query.h"
 #include "light_set.h"
-#include "moving_sphere_set.h"
-#include "quad_set.h"
-#include "sphere_set.h"
+#include "shape_kinds.h"
 #include "surface_hit.h"
 #include "texture_table.h"
-#include "triangle_set.h"
-#include "user_shape_set.h"
 #include "../core/vec3f.h"
 
 #include <algorithm>
@@ -46,32 +41,16 @@
 
 namespace rt {
 
-// Calls f(std::integral_constant<shape_kind, K>{}) for the kind K = `kind`: the one place that
-// turns a shape kind known at run time into the compile-time kind a kernel is chosen by.
-template <class F>
-RTWEEKEND_FORCE_INLINE decltype(auto) with_shape_kind(shape_kind kind, F&& f) {
-    switch (kind) {
-    case shape_kind::sphere: return f(std::integral_constant<shape_kind, shape_kind::sphere>{});
-    case shape_kind::triangle: return f(std::integral_constant<shape_kind, shape_kind::triangle>{});
-    case shape_kind::quad: return f(std::integral_constant<shape_kind, shape_kind::quad>{});
-    case shape_kind::moving_sphere: return f(std::integral_constant<shape_kind, shape_kind::moving_sphere>{});
-    case shape_kind::instance: return f(std::integral_constant<shape_kind, shape_kind::instance>{});
-    case shape_kind::user: break;
-    }
-    return f(std::integral_constant<shape_kind, shape_kind::user>{});
-}
-
 class compiled_scene {
   public:
     vec3 origin; // world position that float coordinates are relative to
     std::vector<compiled_material> materials;
     texture_table textures;     // the materials' textures (compiled_material::texture indexes it)
-    sphere_set spheres;
-    triangle_set triangles;
-    quad_set quads;
-    user_shape_set user_shapes; // user-written hittables with a bounding box
-    moving_sphere_set moving_spheres; // book 2's motion blur
-    instance_set instances;     // objects placed by an affine transform
+    // The set of shapes of kind K (shape_kinds.h), in the BVH's leaf order.
+    template <class K>
+    K& set() { return std::get<K>(sets_); }
+    template <class K>
+    const K& set() const { return std::get<K>(sets_); }
     wide_bvh bvh;                   // over every set
     // The objects instances place: each a subtree of built-in shapes compiled once, with sets and
     // a BVH of its own in its own frame (origin zero), sharing this scene's material table. An
@@ -95,7 +74,7 @@ class compiled_scene {
 
     // Whether rendering calls user code (shapes or materials), which may call random_double().
     bool calls_user_code() const {
-        return !user_shapes.shapes.empty() || !unbounded_user_shapes.empty() || has_user_materials ||
+        return set<user_shape_set>().size() > 0 || !unbounded_user_shapes.empty() || has_user_materials ||
                textures.calls_user_code();
     }
 
@@ -103,7 +82,7 @@ class compiled_scene {
     // ray::time()) is called. Camera rays draw a time only then, so a still scene's samples
     // draw the same random numbers as before motion blur existed.
     bool uses_time() const { return has_motion || calls_user_code(); }
-    bool has_motion = false; // a moving sphere, here or in an object
+    bool has_motion = false; // a moving shape, here or in an object
 
     // The closest hit with t in (ray.tmin, ray.tmax); false when the ray escapes.
     bool intersect(const ray3f& r, surface_hit& hit) const;
@@ -125,41 +104,36 @@ class compiled_scene {
     template <class Predicate>
     void set_back_face_culling(Predicate cullable);
 
-    // The texture coordinates (u, v) of a hit, as the books define them: a sphere's from its
-    // outward normal (book 2's get_sphere_uv), a quad's from its edges (alpha, beta), a mesh
-    // triangle's interpolated from its corners' (0 without them), an instance's from the shape
-    // inside it; (0, 0) for user shapes (whose record carries its own).
+    // The texture coordinates (u, v) of a hit, as the books define them, by its shape's kind
+    // (a sphere's from its outward normal, a quad's from its edges, ...); an instance's were found
+    // in its object's frame when the hit was completed (surface_hit::has_uv).
     void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
 
     // Bytes held for tracing: the sets and the BVH nodes.
     size_t geometry_bytes() const {
-        size_t b = bvh.stats.bytes() + spheres.bytes() + triangles.bytes() + quads.bytes() + user_shapes.bytes() +
-                   moving_spheres.bytes() + instances.bytes();
+        size_t b = bvh.stats.bytes();
+        for_each_kind<shape_kinds>([&](auto k) { b += set<typename decltype(k)::type>().bytes(); });
         for (const auto& o : objects) b += o->geometry_bytes();
         return b;
     }
 
-  private:
-    // What a walk prepares for the kernels on demand (the sheared ray of the triangle test), and
-    // what it found inside an instance: the object's own closest hit, at the object's distance.
-    struct leaf_state {
-        std::optional<triangle_ray> sheared;
-        hit_record* user_record = nullptr; // where a user shape's closest-hit record goes
-        hit_ref inner;                     // when the best hit is an instance: the hit in its object
-        float inner_t = 0;
-    };
-    // Tests the ray against the leaf `ref` of shapes of kind K (see leaf_query.h).
-    template <query Q, shape_kind K>
-    bool leaf_kernel(const ray3f& r, uint32_t ref, float& t_best, hit_ref& best, leaf_state& state) const;
-    // Instances [first, first + n): each object's own walk, in its frame.
-    template <query Q>
-    bool intersect_instances(const ray3f& r, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
-                             leaf_state& state) const;
-    // Walks the BVH.
+    // What a ray's walk keeps for the kinds' kernels (shape_kinds.h).
+    using leaf_state = rt::leaf_state;
+    // The walk and the completion of its closest hit, which the instance kind also asks of the
+    // objects its instances place.
     template <query Q>
     bool trace(const ray3f& r, float& tmax, hit_ref& best, leaf_state& state) const;
     void complete_hit(const ray3f& r, float t, const hit_ref& best, const leaf_state& state, surface_hit& hit) const;
-    void complete_instance_hit(const ray3f& r, const leaf_state& state, uint32_t i, surface_hit& hit) const;
+
+  private:
+    kind_tuple<shape_kinds> sets_;
+
+    // Tests the ray against the leaf `ref` of shapes of kind K (see leaf_query.h).
+    template <query Q, class K>
+    bool leaf_kernel(const ray3f& r, uint32_t ref, float& t_best, hit_ref& best, leaf_state& state) const {
+        return set<K>().template intersect_leaf<Q, shape_id<K>>(*this, r, bvh_ref::first(ref), bvh_ref::count(ref),
+                                                                 t_best, best, state_of<K>(state));
+    }
     bool intersect_unbounded(const ray3f& r, bool found, surface_hit& hit) const;
 };
 
@@ -232,65 +206,18 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
 
 } // namespace detail
 
-template <query Q, shape_kind K>
-RTWEEKEND_FORCE_INLINE bool compiled_scene::leaf_kernel(const ray3f& r, uint32_t ref, float& t_best, hit_ref& best, leaf_state& state) const {
-    const uint32_t first = bvh_ref::first(ref), count = bvh_ref::count(ref);
-    if constexpr (K == shape_kind::sphere) {
-        return spheres.intersect_leaf<Q>(r, first, count, t_best, best);
-    } else if constexpr (K == shape_kind::triangle) {
-        if (!state.sheared) state.sheared.emplace(r); // the ray's first triangle leaf
-        return triangles.intersect_leaf<Q>(r, *state.sheared, first, count, t_best, best);
-    } else if constexpr (K == shape_kind::quad) {
-        return quads.intersect_leaf<Q>(r, first, count, t_best, best);
-    } else if constexpr (K == shape_kind::moving_sphere) {
-        return moving_spheres.intersect_leaf<Q>(r, first, count, t_best, best);
-    } else if constexpr (K == shape_kind::instance) {
-        return intersect_instances<Q>(r, first, count, t_best, best, state);
-    } else {
-        return user_shapes.intersect_leaf<Q>(r, origin, first, count, t_best, best, state.user_record);
-    }
-}
-
-// Out of line: the object's walk calls trace again (an object holds no instances, so it never
-// comes back here), and inlined into every leaf dispatch it would crowd the traversal loop.
-template <query Q>
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-bool compiled_scene::intersect_instances(const ray3f& r, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
-                                         leaf_state& state) const {
-    bool found = false;
-    for (uint32_t i = first; i < first + n; ++i) {
-        ray3f local;
-        float scale;
-        if (!instances.local_ray(i, r, local, scale)) continue;
-        float t_local = t_best * scale;
-        hit_ref inner;
-        leaf_state inner_state;
-        if (!objects[instances.object[i]]->trace<Q>(local, t_local, inner, inner_state)) continue;
-        if constexpr (Q == query::any) return true;
-        // Back in the scene's distances; rounding must not make a hit farther than t_best.
-        t_best = fmin_inline(t_local / scale, t_best);
-        best = {shape_kind::instance, i};
-        state.inner = inner;
-        state.inner_t = t_local;
-        found = true;
-    }
-    return found;
-}
-
 template <query Q>
 bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, leaf_state& state) const {
     if (single_kind) {
         return with_shape_kind(*single_kind, [&](auto kind) {
             return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
-                return leaf_kernel<Q, decltype(kind)::value>(r, ref, t_best, best, state);
+                return leaf_kernel<Q, typename decltype(kind)::type>(r, ref, t_best, best, state);
             });
         });
     }
     return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
         return with_shape_kind(bvh_ref::kind(ref), [&](auto kind) {
-            return leaf_kernel<Q, decltype(kind)::value>(r, ref, t_best, best, state);
+            return leaf_kernel<Q, typename decltype(kind)::type>(r, ref, t_best, best, state);
         });
     });
 }
@@ -303,75 +230,19 @@ inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref&
     hit.user_shape = nullptr;
     hit.kind = best.kind;
     hit.index = best.index;
-    switch (best.kind) {
-    case shape_kind::sphere: spheres.complete_hit(r, t, best.index, hit); break;
-    case shape_kind::triangle: triangles.complete_hit(r, t, best.index, hit); break;
-    case shape_kind::quad: quads.complete_hit(r, t, best.index, hit); break;
-    case shape_kind::moving_sphere: moving_spheres.complete_hit(r, t, best.index, hit); break;
-    case shape_kind::instance: complete_instance_hit(r, state, best.index, hit); break;
-    case shape_kind::user: complete_user_hit(user_shapes.shapes[best.index], hit.user_record, origin, hit); break;
-    }
+    with_shape_kind(best.kind, [&](auto kind) {
+        using K = typename decltype(kind)::type;
+        set<K>().complete_hit(*this, r, t, best.index, state_of<K>(state), hit);
+    });
 }
 
 inline void compiled_scene::surface_coordinates(const surface_hit& hit, double& u, double& v) const {
-    u = v = 0;
     if (hit.has_uv) {
         u = hit.u;
         v = hit.v;
         return;
     }
-    const vec3f outward = hit.front_face ? hit.normal : -hit.normal;
-    if (hit.kind == shape_kind::sphere || hit.kind == shape_kind::moving_sphere) {
-        const double theta = std::acos(fmax_inline(-1.0, fmin_inline(1.0, double(-outward.y))));
-        const double phi = std::atan2(double(-outward.z), double(outward.x)) + pi;
-        u = phi / (2 * pi);
-        v = theta / pi;
-    } else if (hit.kind == shape_kind::quad) {
-        const vec3 q = quads.corner(hit.index).to_double(), eu = quads.edge_u(hit.index).to_double(),
-                   ev = quads.edge_v(hit.index).to_double();
-        const vec3 n = cross(eu, ev), w = n / dot(n, n), rel = hit.p.to_double() - q;
-        u = dot(w, cross(rel, ev));
-        v = dot(w, cross(eu, rel));
-    } else if (hit.kind == shape_kind::triangle) {
-        triangles.surface_coordinates(hit.index, hit.p.to_double(), u, v);
-    }
-}
-
-// The object's own hit, completed in its frame, carried out to the scene's: see instance_set.h.
-inline void compiled_scene::complete_instance_hit(const ray3f& r, const leaf_state& state, uint32_t i,
-                                                  surface_hit& hit) const {
-    ray3f local;
-    float scale;
-    instances.local_ray(i, r, local, scale); // it succeeded in the walk: the same ray again
-    surface_hit inner;
-    objects[instances.object[i]]->complete_hit(local, state.inner_t, state.inner, leaf_state{}, inner);
-    const affine3f& to_world = instances.to_world[i];
-    const affine3f& to_object = instances.to_object[i];
-    hit.p = to_world.point(inner.p);
-    // Normals as gradients, by the inverse transpose; each still faces the ray (the transform
-    // keeps which side of the surface a point is on), and front_face carries over.
-    hit.normal = normalize(to_object.transposed(inner.normal));
-    hit.shading_normal = normalize(to_object.transposed(inner.shading_normal));
-    hit.front_face = inner.front_face;
-    hit.material = inner.material;
-    if (materials[inner.material].texture != no_texture) {
-        // Texture coordinates belong to the shape in its own frame (as the book's transforms
-        // compute them, hitting the object in its frame): asked of the object now.
-        double u, v;
-        objects[instances.object[i]]->surface_coordinates(inner, u, v);
-        hit.has_uv = true;
-        hit.u = float(u);
-        hit.v = float(v);
-    }
-    // The error of the carried-out point, and of a spawned ray's origin carried back in.
-    const auto& a = to_world.m;
-    const vec3f a_p = {std::fabs(a[0][0] * inner.p.x) + std::fabs(a[0][1] * inner.p.y) + std::fabs(a[0][2] * inner.p.z),
-                       std::fabs(a[1][0] * inner.p.x) + std::fabs(a[1][1] * inner.p.y) + std::fabs(a[1][2] * inner.p.z),
-                       std::fabs(a[2][0] * inner.p.x) + std::fabs(a[2][1] * inner.p.y) + std::fabs(a[2][2] * inner.p.z)};
-    const float out_error = std::ldexp(max_abs_component(a_p) + max_abs_component(to_world.t), -21);
-    const float in_error =
-        std::ldexp(to_object.max_stretch() * max_abs_component(hit.p) + max_abs_component(to_object.t), -20);
-    hit.offset = to_world.max_stretch() * (inner.offset + in_error) + out_error;
+    with_shape_kind(hit.kind, [&](auto kind) { set<typename decltype(kind)::type>().surface_coordinates(hit, u, v); });
 }
 
 // The user's hittables without a box, in double precision and world coordinates, after the BVH
@@ -390,6 +261,7 @@ inline bool compiled_scene::intersect_unbounded(const ray3f& r, bool found, surf
     }
     if (!nearest) return found;
     complete_user_hit(nearest, hit.user_record, origin, hit);
+    hit.kind = shape_id<user_shape_set>;
     hit.time = r.time;
     return true;
 }
@@ -399,7 +271,7 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
     float t = r.tmax;
     hit_ref best;
     leaf_state state;
-    state.user_record = &hit.user_record;
+    state_of<user_shape_set>(state).record = &hit.user_record;
     bool found = trace<query::closest>(r, t, best, state);
     if (found) complete_hit(r, t, best, state, hit);
     if (!unbounded_user_shapes.empty()) found = intersect_unbounded(r, found, hit);
@@ -439,16 +311,19 @@ inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hi
         in_place_array<leaf_state, W> state;
         traverse_packet(bvh, packet, t_best, (1u << count) - 1u, [&](uint32_t ref, unsigned active) {
             const shape_kind kind = single_kind ? *single_kind : bvh_ref::kind(ref);
-            if (kind == shape_kind::sphere) {
-                spheres.intersect_leaf_packet(lanes, bvh_ref::first(ref), bvh_ref::count(ref), active, t_best, best);
-                return;
-            }
-            while (state.size() < count) state.emplace_back();
-            // Other shapes: each lane's ray through its kind's own kernel.
             with_shape_kind(kind, [&](auto k) {
-                for (unsigned m = active; m; m &= m - 1) {
-                    const unsigned i = unsigned(__builtin_ctz(m));
-                    leaf_kernel<query::closest, decltype(k)::value>(r[i], ref, t_best[i], best[i], state[i]);
+                using K = typename decltype(k)::type;
+                if constexpr (has_packet_kernel<K>::value) {
+                    // A kind with a packet kernel (spheres): a shape for all lanes at once.
+                    set<K>().template intersect_leaf_packet<shape_id<K>>(lanes, bvh_ref::first(ref), bvh_ref::count(ref),
+                                                                          active, t_best, best);
+                } else {
+                    // Other kinds: each lane's ray through the kind's own kernel.
+                    while (state.size() < count) state.emplace_back();
+                    for (unsigned m = active; m; m &= m - 1) {
+                        const unsigned i = unsigned(__builtin_ctz(m));
+                        leaf_kernel<query::closest, K>(r[i], ref, t_best[i], best[i], state[i]);
+                    }
                 }
             });
         });
@@ -468,7 +343,7 @@ inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface
     float t = r.tmax;
     hit_ref best;
     leaf_state state;
-    state.user_record = &hit.user_record; // user shapes: never culled
+    state_of<user_shape_set>(state).record = &hit.user_record; // user shapes: never culled
     bool found = trace<query::closest_culled>(r, t, best, state);
     if (found) complete_hit(r, t, best, state, hit);
     if (!unbounded_user_shapes.empty()) found = intersect_unbounded(r, found, hit);
@@ -491,15 +366,7 @@ inline bool compiled_scene::occluded(const ray3f& r) const {
 
 template <class Predicate>
 void compiled_scene::set_back_face_culling(Predicate cullable) {
-    auto flags = [&](const std::vector<uint32_t>& material, size_t count) {
-        std::vector<float> f(material.size(), 0.0f); // the padding lanes never hit anyway
-        for (size_t i = 0; i < count; ++i) f[i] = cullable(material[i]) ? 1.0f : 0.0f;
-        return f;
-    };
-    spheres.cull = flags(spheres.material, spheres.count);
-    triangles.cull = flags(triangles.material, triangles.count);
-    quads.cull = flags(quads.material, quads.count);
-    moving_spheres.cull = flags(moving_spheres.material, moving_spheres.count);
+    for_each_kind<shape_kinds>([&](auto k) { set<typename decltype(k)::type>().mark_culled(cullable); });
     culls_back_faces = true;
     // Objects are compiled for this scene (a copy of the scene shares them, and their marks).
     for (auto& o : objects) o->set_back_face_culling(cullable);

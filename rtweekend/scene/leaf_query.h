@@ -1,7 +1,7 @@
 #pragma once
 // What a BVH leaf kernel is asked and what it reports. Every shape kind of the compiled scene has
-// a kernel that tests a ray against one leaf of its shapes (sphere_set.h, triangle_set.h, ...);
-// compiled_scene.h dispatches to them by the leaf's kind.
+// a kernel that tests a ray against one leaf of its shapes (scene/shapes/sphere_set.h, ...);
+// compiled_scene.h dispatches to them by the leaf's kind (scene/shape_kinds.h lists the kinds).
 //
 //   query::closest           lower t_best to the nearest hit in the leaf, remember which shape
 //   query::any               return true at the first hit (shadow rays)
@@ -11,23 +11,20 @@
 
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace rt {
 
-// The kinds of shape a BVH leaf can hold (each leaf holds one kind): built-in spheres, triangles
-// and quads, user-written hittables with a bounding box, moving spheres (book 2's motion blur),
-// and instances (an object's own compiled geometry under an affine transform, instance_set.h).
-// The leaf reference has room for seven (bvh.h); a new kind adds a value here, a set of its own
-// and a case in compiled_scene's dispatch.
-enum class shape_kind : uint8_t { sphere = 0, triangle = 1, quad = 2, user = 3, moving_sphere = 4, instance = 5 };
-inline constexpr int shape_kind_count = 6;
+// The kind of shape a BVH leaf holds (each leaf holds one kind): its number in the list of shape
+// kinds, scene/shape_kinds.h (shape_id<sphere_set> is the sphere's).
+enum class shape_kind : uint8_t {};
 
 enum class query : uint8_t { closest, any, closest_culled };
 
 // The closest hit found so far: which shape, by kind and position in its set.
 struct hit_ref {
     static constexpr uint32_t none = UINT32_MAX; // no hit yet
-    shape_kind kind = shape_kind::sphere;
+    shape_kind kind{};
     uint32_t index = none;
 };
 
@@ -67,6 +64,15 @@ inline bool take_closest(maskv hits, floatv t, shape_kind kind, uint32_t first_l
     t_best = nearest;
     best = {kind, index};
     return true;
+}
+
+// Back-face culling flags for a kind's laid-out shapes: 1 for the first `count` whose material
+// index `cullable` accepts, 0 for the rest (the padding lanes, never hit anyway).
+template <class Predicate>
+std::vector<float> culling_flags(const std::vector<uint32_t>& material, size_t count, Predicate cullable) {
+    std::vector<float> f(material.size(), 0.0f);
+    for (size_t i = 0; i < count; ++i) f[i] = cullable(material[i]) ? 1.0f : 0.0f;
+    return f;
 }
 
 } // namespace rt

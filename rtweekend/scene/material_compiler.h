@@ -1,8 +1,9 @@
 #pragma once
-// compile_material: the renderer's table entry (the material contract, bsdf.h) for a material of
-// the teaching surface, after checking its parameters. The built-in materials are recognised by
-// their exact type; any other material (a user's own subclass, or a subclass of a built-in one)
-// becomes a user entry, rendered through its virtual functions. A lambertian or a diffuse_light
+// compile_material: the renderer's table entry (the material contract, core/material_kinds.h) for a
+// material of the teaching surface, after checking its parameters. The built-in materials are
+// recognised by their exact class (classify.h's book_materials); any other material (a user's own
+// subclass, or a subclass of a built-in one) becomes a user entry, rendered through its virtual
+// functions. A lambertian or a diffuse_light
 // whose texture is not a solid_color is compiled with its texture into `textures` (its entry's
 // texture index; texture_table.h) when a table is given, and is a user entry otherwise (the
 // material a user's hittable reports at a hit, compiled on the spot without the scene's table).
@@ -15,13 +16,13 @@
 #include "../core/scene_error.h"
 #include "../texture.h"
 #include "../whitted_material.h"
-#include "../core/bsdf.h"
+#include "../core/material_kinds.h"
+#include "classify.h"
 #include "texture_table.h"
 #include "validate.h"
 
 #include <cmath>
 #include <string>
-#include <typeinfo>
 
 namespace rt {
 
@@ -50,96 +51,86 @@ inline void check_whitted_material(const whitted_material& w) {
 }
 
 // A material the renderer calls through its virtual functions.
-inline compiled_material user_entry(const material& m) {
-    compiled_material user;
-    user.kind = material_kind::user;
-    user.source = &m;
-    return user;
+inline compiled_material user_entry(const material& m) { return compiled_material::of(user_bsdf{}, &m); }
+
+// The books' materials, one rule each (classify.h's book_materials): the parameters checked, the
+// entry the class's compiled() gives, and a texture compiled into the table when it is not a
+// solid_color (without a table: a user entry, its value() asked per hit through scatter()).
+inline compiled_material compile_book(const lambertian& l, texture_table* textures) {
+    if (!l.tex()) throw scene_error("lambertian texture is null");
+    if (!exact_solid_color(l.tex().get())) {
+        if (!textures) return user_entry(l); // its value() per hit, through scatter()
+        compiled_material c = l.compiled();
+        c.texture = textures->add(*l.tex());
+        return c;
+    }
+    check_color(l.albedo(), "lambertian albedo");
+    return l.compiled();
+}
+inline compiled_material compile_book(const diffuse_light& d, texture_table* textures) {
+    if (!d.tex()) throw scene_error("diffuse_light texture is null");
+    if (!exact_solid_color(d.tex().get())) {
+        if (!textures) return user_entry(d);
+        compiled_material c = d.compiled();
+        c.texture = textures->add(*d.tex());
+        // The constant emission stands for the texture's mean: it makes emits() true and sets the
+        // light's power for light selection (find_lights); the radiance itself is looked up where
+        // the light is hit or sampled.
+        const float mean = textures->average(c.texture);
+        return c.with_colour(vec3f{mean, mean, mean});
+    }
+    check_color(d.emission(), "diffuse_light emission");
+    return d.compiled();
+}
+inline compiled_material compile_book(const metal& mt, texture_table*) {
+    check_color(mt.albedo(), "metal albedo");
+    if (!(mt.fuzz() >= 0)) throw scene_error("metal fuzz must be non-negative, got " + std::to_string(mt.fuzz()));
+    return mt.compiled();
+}
+inline compiled_material compile_book(const dielectric& g, texture_table*) {
+    check_refraction_index(g.refraction_index(), "dielectric refraction index");
+    if (g.exact_fresnel()) check_color(g.absorption(), "dielectric absorption");
+    return g.compiled();
+}
+inline compiled_material compile_book(const conductor& c, texture_table*) {
+    check_color(c.tint(), "conductor tint");
+    check_color(c.n(), "conductor n");
+    check_color(c.k(), "conductor k");
+    if (!(c.n().x() > 0 && c.n().y() > 0 && c.n().z() > 0))
+        throw scene_error("conductor n must be positive, got " + point_text(c.n()));
+    return c.compiled();
+}
+// A textured one stays a user entry even with a table: a constant_medium reports it at its hits,
+// and a user shape's material is compiled on the spot, without the table.
+inline compiled_material compile_book(const isotropic& i, texture_table*) {
+    if (!i.tex()) throw scene_error("isotropic texture is null");
+    if (!exact_solid_color(i.tex().get())) return user_entry(i);
+    check_color(i.albedo(), "isotropic albedo");
+    return i.compiled();
+}
+inline compiled_material compile_book(const plastic& p, texture_table*) {
+    check_color(p.diffuse(), "plastic diffuse colour");
+    check_refraction_index(p.refraction_index(), "plastic refraction index");
+    return p.compiled();
+}
+inline compiled_material compile_book(const blinn_phong& b, texture_table*) {
+    check_color(b.diffuse(), "blinn_phong diffuse colour");
+    check_color(b.specular(), "blinn_phong specular colour");
+    if (!(std::isfinite(b.exponent()) && b.exponent() >= 0))
+        throw scene_error("blinn_phong exponent must be finite and non-negative, got " + std::to_string(b.exponent()));
+    return b.compiled();
+}
+inline compiled_material compile_book(const whitted_material& w, texture_table*) {
+    check_whitted_material(w);
+    return w.compiled();
 }
 
 } // namespace detail
 
 inline compiled_material compile_material(const material& m, texture_table* textures) {
-    const std::type_info& type = typeid(m);
-    if (type == typeid(lambertian)) {
-        auto& l = static_cast<const lambertian&>(m);
-        if (!l.tex()) throw scene_error("lambertian texture is null");
-        if (!exact_solid_color(l.tex().get())) {
-            if (!textures) return detail::user_entry(m); // its value() per hit, through scatter()
-            compiled_material c = l.compiled();
-            c.texture = textures->add(*l.tex());
-            return c;
-        }
-        check_color(l.albedo(), "lambertian albedo");
-        return l.compiled();
-    }
-    if (type == typeid(diffuse_light)) {
-        auto& d = static_cast<const diffuse_light&>(m);
-        if (!d.tex()) throw scene_error("diffuse_light texture is null");
-        if (!exact_solid_color(d.tex().get())) {
-            if (!textures) return detail::user_entry(m);
-            compiled_material c = d.compiled();
-            c.texture = textures->add(*d.tex());
-            // The constant emission stands for the texture's mean: it makes emits() true and sets
-            // the light's power for light selection (find_lights); the radiance itself is looked
-            // up where the light is hit or sampled.
-            const float mean = textures->average(c.texture);
-            c.emission = vec3f{mean, mean, mean};
-            return c;
-        }
-        check_color(d.emission(), "diffuse_light emission");
-        return d.compiled();
-    }
-    if (type == typeid(metal)) {
-        auto& mt = static_cast<const metal&>(m);
-        check_color(mt.albedo(), "metal albedo");
-        if (!(mt.fuzz() >= 0)) throw scene_error("metal fuzz must be non-negative, got " + std::to_string(mt.fuzz()));
-        return mt.compiled();
-    }
-    if (type == typeid(dielectric)) {
-        auto& g = static_cast<const dielectric&>(m);
-        detail::check_refraction_index(g.refraction_index(), "dielectric refraction index");
-        if (g.exact_fresnel()) check_color(g.absorption(), "dielectric absorption");
-        return g.compiled();
-    }
-    if (type == typeid(conductor)) {
-        auto& c = static_cast<const conductor&>(m);
-        check_color(c.tint(), "conductor tint");
-        check_color(c.n(), "conductor n");
-        check_color(c.k(), "conductor k");
-        if (!(c.n().x() > 0 && c.n().y() > 0 && c.n().z() > 0))
-            throw scene_error("conductor n must be positive, got " + point_text(c.n()));
-        return c.compiled();
-    }
-    if (type == typeid(isotropic)) {
-        // A textured one stays a user entry even with a table: a constant_medium reports it at
-        // its hits, and a user shape's material is compiled on the spot, without the table.
-        auto& i = static_cast<const isotropic&>(m);
-        if (!i.tex()) throw scene_error("isotropic texture is null");
-        if (!exact_solid_color(i.tex().get())) return detail::user_entry(m);
-        check_color(i.albedo(), "isotropic albedo");
-        return i.compiled();
-    }
-    if (type == typeid(plastic)) {
-        auto& p = static_cast<const plastic&>(m);
-        check_color(p.diffuse(), "plastic diffuse colour");
-        detail::check_refraction_index(p.refraction_index(), "plastic refraction index");
-        return p.compiled();
-    }
-    if (type == typeid(blinn_phong)) {
-        auto& b = static_cast<const blinn_phong&>(m);
-        check_color(b.diffuse(), "blinn_phong diffuse colour");
-        check_color(b.specular(), "blinn_phong specular colour");
-        if (!(std::isfinite(b.exponent()) && b.exponent() >= 0))
-            throw scene_error("blinn_phong exponent must be finite and non-negative, got " + std::to_string(b.exponent()));
-        return b.compiled();
-    }
-    if (type == typeid(whitted_material)) {
-        auto& w = static_cast<const whitted_material&>(m);
-        detail::check_whitted_material(w);
-        return w.compiled();
-    }
-    return detail::user_entry(m);
+    return visit_book_class<book_materials>(
+        m, [&](const auto& known) { return detail::compile_book(known, textures); },
+        [](const material& other) { return detail::user_entry(other); });
 }
 
 } // namespace rt

@@ -8,15 +8,15 @@
 //   textured_light_radiance(scene, lc)       the radiance of a textured light at the point a light
 //                                            sample chose (light_set.h)
 //
-// (u, v) by shape: a sphere's from its outward normal (book 2's get_sphere_uv: u the angle around
-// the y axis from -x, v from the south pole -y up); a quad's from its edges (book 2's alpha and
-// beta, Q + u U + v V); a triangle's from its mesh's per-vertex uv weighted barycentrically, or 0
-// (as the book's shapes without coordinates have); an instance's from the shape inside it, in the
-// object's own frame (compiled_scene::surface_coordinates). A sphere flattened under rotate_y
+// (u, v) by shape kind (scene/shapes/): a sphere's from its outward normal (book 2's get_sphere_uv:
+// u the angle around the y axis from -x, v from the south pole -y up); a quad's from its edges
+// (book 2's alpha and beta, Q + u U + v V); a triangle's from its mesh's per-vertex uv weighted
+// barycentrically, or 0 (as the book's shapes without coordinates have); an instance's from the
+// shape inside it, in the object's own frame (found when its hit is completed). A sphere flattened under rotate_y
 // keeps its world-space normal here, where the book's hit computes (u, v) in the object's frame:
 // its texture turns with the world, not with the sphere.
 
-#include "../core/bsdf.h"
+#include "../core/material_kinds.h"
 #include "compiled_scene.h"
 #include "light_set.h"
 #include "surface_hit.h"
@@ -44,11 +44,7 @@ inline vec3f texture_at(const compiled_scene& scene, uint32_t texture, const sur
 } // namespace detail
 
 inline compiled_material textured(const compiled_scene& scene, const compiled_material& m, const surface_hit& hit) {
-    compiled_material out = m;
-    const vec3f c = detail::texture_at(scene, m.texture, hit);
-    if (m.kind == material_kind::diffuse_light) out.emission = c;
-    else out.albedo = c;
-    return out;
+    return m.with_colour(detail::texture_at(scene, m.texture, hit));
 }
 
 inline vec3f textured_light_radiance(const compiled_scene& scene, const light_choice& lc) {
@@ -57,10 +53,8 @@ inline vec3f textured_light_radiance(const compiled_scene& scene, const light_ch
     at.p = lc.y;
     at.normal = lc.n; // outward: the sampler's normal, seen from its front
     at.front_face = true;
-    at.index = l.shape;
-    at.kind = l.kind == light_kind::sphere ? shape_kind::sphere
-              : l.kind == light_kind::quad ? shape_kind::quad
-                                           : shape_kind::triangle;
+    at.index = l.shape_index;
+    at.kind = l.shape;
     return detail::texture_at(scene, lc.texture, at);
 }
 

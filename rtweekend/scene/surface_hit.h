@@ -26,7 +26,7 @@ struct surface_hit {
     bool has_uv = false;
     float u = 0, v = 0;
     uint32_t material = 0; // index into compiled_scene::materials
-    shape_kind kind = shape_kind::sphere; // which shape was hit: its kind and index in its set
+    shape_kind kind{};     // which shape was hit: its kind and index in its set
     uint32_t index = 0;
     // Set when a user-written hittable was hit: its record, in world coordinates.
     const hittable* user_shape = nullptr;

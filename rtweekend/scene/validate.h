@@ -1,6 +1,7 @@
 #pragma once
 // Checks of what users give the renderer (colours, points, sizes), each throwing scene_error with
-// one line that names the value and says what is wrong with it.
+// one line that names the value and says what is wrong with it; and the float range the compiled
+// scene keeps its coordinates in.
 
 #include "../color.h"
 #include "../core/scene_error.h"
@@ -8,6 +9,7 @@
 #include "../core/vec3f.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace rt {
@@ -17,6 +19,13 @@ namespace rt {
 inline constexpr double max_float_extent = 1e18;
 
 inline bool finite3(const vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+// The largest |coordinate|.
+inline double max_abs(const vec3& v) { return fmax_inline(std::fabs(v.x()), fmax_inline(std::fabs(v.y()), std::fabs(v.z()))); }
+
+// x rounded to the float below and above it: a box rounded outwards holds the double one.
+inline float float_below(double x) { return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity()); }
+inline float float_above(double x) { return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity()); }
 
 // "(x, y, z)", for messages.
 inline std::string point_text(const vec3& v) {

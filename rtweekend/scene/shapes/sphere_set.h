@@ -1,29 +1,76 @@
 #pragma once
-// sphere_set: the compiled scene's spheres, one float array per field in BVH leaf order, and the
-// SIMD kernel that tests a ray against one leaf of them, floatv::width spheres per instruction.
+// sphere_set: the shape kind of the books' still spheres (scene/shape_kinds.h says what a kind
+// answers). The compiled spheres are one float array per field in BVH leaf order; the SIMD kernel
+// tests a ray against one leaf of them, floatv::width spheres per instruction, and a packet of
+// rays against one sphere at a time (intersect_leaf_packet: compiled_scene::intersect_batch).
 //
 // The test is the numerically stable one of sphere.h (Haines et al., Ray Tracing Gems ch. 7):
 // the discriminant from the centre's distance to the ray's line, the near root from c / q.
+//
+// The books' sphere class is compiled here: a moving one (book 2) goes to moving_sphere_set; a
+// negative radius (the older books' hollow glass) is the sphere of radius |r| turned inside out.
 
-#include "../core/force_inline.h"
-#include "leaf_query.h"
-#include "../core/simd.h"
-#include "surface_hit.h"
-#include "../core/vec3f.h"
+#include "../../core/box3f.h"
+#include "../../core/constants.h"
+#include "../../core/force_inline.h"
+#include "../../core/scene_error.h"
+#include "../../core/simd.h"
+#include "../../core/vec3f.h"
+#include "../../sphere.h"
+#include "../affine_map.h"
+#include "../leaf_query.h"
+#include "../lights/sphere_emitter.h"
+#include "../surface_hit.h"
+#include "../validate.h"
+#include "moving_sphere_set.h"
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace rt {
 
 struct sphere_set {
+    static constexpr const char* name = "sphere";
+    // Whether its shapes move with the ray's time.
+    static constexpr bool moves = false;
+
+    // --- compiling ---------------------------------------------------------------------------
+    // A sphere as the compiler collects it: centre relative to the scene origin, in double.
+    struct input {
+        vec3 c;
+        double r;
+        uint32_t material;
+    };
+    // The book's sphere under the map xf (which keeps it round: the compiler instances it
+    // otherwise), into the compiler's inputs of this kind or of moving_sphere_set.
+    template <class Compiler>
+    static void add(Compiler& compiler, const sphere& s, const affine_map& xf);
+    // The box the BVH holds it in, rounded outwards: it must contain the float sphere the kernel sees.
+    template <class Scene>
+    static box3f bounds(const input& s, const Scene&) {
+        box3f b;
+        b.lo = {float_below(s.c.x() - s.r), float_below(s.c.y() - s.r), float_below(s.c.z() - s.r)};
+        b.hi = {float_above(s.c.x() + s.r), float_above(s.c.y() + s.r), float_above(s.c.z() + s.r)};
+        return b;
+    }
+    // The inputs in the BVH's leaf order, then floatv::width padding spheres (a leaf's loads read
+    // that far).
+    template <class Scene>
+    void lay_out(const Scene&, const std::vector<input>& inputs, const std::vector<uint32_t>& order) {
+        count = order.size();
+        for (uint32_t i : order) append(vec3f(inputs[i].c), static_cast<float>(inputs[i].r), inputs[i].material);
+        for (size_t k = 0; k < floatv::width; ++k) append(vec3f(0, 0, 0), 0, 0, /*padding=*/true);
+    }
+
+    // --- the compiled spheres ------------------------------------------------------------------
     size_t count = 0; // spheres; the arrays hold floatv::width more, never hit (padding)
     std::vector<float> x, y, z, r2, r, offset;
     std::vector<uint32_t> material;
     // Back-face culling: 1 where a hit on the back face (a ray from inside) is skipped; empty
-    // until compiled_scene::set_back_face_culling.
+    // until mark_culled.
     std::vector<float> cull;
 
     // Appends a sphere with centre c (relative to the scene origin) and radius `radius`; a
@@ -41,27 +88,81 @@ struct sphere_set {
         material.push_back(material_index);
     }
 
-    // Tests spheres [first, first + n) against the ray: see leaf_query.h.
-    template <query Q>
-    bool intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const;
+    size_t size() const { return count; }
+    uint32_t material_of(uint32_t i) const { return material[i]; }
+    vec3f center(uint32_t i) const { return {x[i], y[i], z[i]}; }
+
+    // Nothing a ray's walk keeps for this kind.
+    struct ray_state {};
+    // Tests spheres [first, first + n) against the ray: see leaf_query.h. Self: this kind's number.
+    template <query Q, shape_kind Self, class Scene>
+    bool intersect_leaf(const Scene&, const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
+                        ray_state&) const;
     // The same for a packet of rays, one per lane (closest hits): each lane of `lanes` lowers
     // t_best[lane] and sets best[lane] exactly as intersect_leaf would for its ray alone.
+    template <shape_kind Self>
     void intersect_leaf_packet(const ray_lanes& rays, uint32_t first, uint32_t n, unsigned lanes, float* t_best,
                                hit_ref* best) const;
-
     // The hit on sphere i at distance t along the ray.
-    void complete_hit(const ray3f& ray, float t, uint32_t i, surface_hit& hit) const {
-        vec3f center{x[i], y[i], z[i]};
+    template <class Scene>
+    void complete_hit(const Scene&, const ray3f& ray, float t, uint32_t i, const ray_state&, surface_hit& hit) const {
+        vec3f c = center(i);
         // Re-project the hit point onto the sphere: removes the error of o + t d along the ray.
-        vec3f outward = normalize(ray.at(t) - center);
-        hit.p = center + r[i] * outward;
+        vec3f outward = normalize(ray.at(t) - c);
+        hit.p = c + r[i] * outward;
         hit.set_face_normal(ray.dir, outward);
         hit.offset = offset[i];
         hit.material = material[i];
     }
+    // Book 2's get_sphere_uv, from the outward normal (detail::sphere_uv).
+    void surface_coordinates(const surface_hit& hit, double& u, double& v) const { detail::sphere_uv(hit, u, v); }
+
+    // An emitting sphere is light-sampled by the cone it subtends.
+    static constexpr bool light_sampled = true;
+    sphere_emitter light_of(uint32_t i) const { return {center(i), r[i]}; }
+
+    // Grows b by the spheres whose material `selected` accepts.
+    template <class Scene, class Predicate>
+    void bound_where(const Scene&, Predicate selected, box3f& b) const {
+        for (uint32_t i = 0; i < count; ++i)
+            if (selected(material[i])) {
+                b.grow(center(i) - vec3f{r[i], r[i], r[i]});
+                b.grow(center(i) + vec3f{r[i], r[i], r[i]});
+            }
+    }
+    // Marks the spheres whose material `cullable` accepts for back-face culling.
+    template <class Predicate>
+    void mark_culled(Predicate cullable) { cull = culling_flags(material, count, cullable); }
 
     size_t bytes() const { return (x.size() * 6 + cull.size()) * sizeof(float) + material.size() * sizeof(uint32_t); }
 };
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+template <class Compiler>
+void sphere_set::add(Compiler& compiler, const sphere& s, const affine_map& xf) {
+    if (!finite3(s.center()) || !finite3(s.center(1)))
+        throw scene_error("sphere centre must be finite, got " + point_text(s.center()) +
+                          (s.is_moving() ? " moving to " + point_text(s.center(1)) : std::string()));
+    if (!(std::isfinite(s.radius()) && s.radius() != 0))
+        throw scene_error("sphere radius must be finite and not zero, got " + std::to_string(s.radius()));
+    if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
+    // A negative radius is the books' v3 hollow glass: the sphere of radius |r|, inside out.
+    const bool inside_out = s.radius() < 0;
+    const uint32_t material =
+        inside_out ? compiler.inside_out_material_index(s.mat().get()) : compiler.material_index(s.mat().get());
+    const double radius = std::fabs(s.radius()) * xf.sphere_scale(); // the compiler saw to it that the map keeps it round
+    const vec3 c = xf.point(s.center()) - compiler.origin(), c1 = xf.point(s.center(1)) - compiler.origin();
+    if (!(fmax_inline(max_abs(c), max_abs(c1)) + radius < max_float_extent))
+        throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
+                          " is out of single-precision range: its distance from the camera plus its radius must "
+                          "be below 1e18");
+    if (s.is_moving()) {
+        compiler.template inputs<moving_sphere_set>().push_back({c, c1, radius, material});
+        return;
+    }
+    compiler.template inputs<sphere_set>().push_back({c, radius, material});
+}
 
 namespace detail {
 
@@ -94,8 +195,9 @@ struct sphere_crossing {
 
 } // namespace detail
 
-template <query Q>
-RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best) const {
+template <query Q, shape_kind Self, class Scene>
+RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const Scene&, const ray3f& ray, uint32_t first, uint32_t n,
+                                                       float& t_best, hit_ref& best, ray_state&) const {
     constexpr size_t W = floatv::width;
     const floatv tmin(ray.tmin), zero(0.0f);
     const floatv ox(ray.origin.x), oy(ray.origin.y), oz(ray.origin.z);
@@ -115,11 +217,12 @@ RTWEEKEND_FORCE_INLINE bool sphere_set::intersect_leaf(const ray3f& ray, uint32_
         maskv hits = crosses & within_range<Q>(t, tmin, t_best);
         if (!any(hits)) continue;
         if constexpr (Q == query::any) return true;
-        found |= take_closest(hits, t, shape_kind::sphere, i, t_best, best);
+        found |= take_closest(hits, t, Self, i, t_best, best);
     }
     return found;
 }
 
+template <shape_kind Self>
 RTWEEKEND_FORCE_INLINE void sphere_set::intersect_leaf_packet(const ray_lanes& rays, uint32_t first, uint32_t n,
                                                               unsigned lanes, float* t_best, hit_ref* best) const {
     // Each lane's nearest sphere of the leaf within (tmin, t_best], the first at one distance, as
@@ -151,12 +254,12 @@ RTWEEKEND_FORCE_INLINE void sphere_set::intersect_leaf_packet(const ray_lanes& r
     nearest_i.store(leaf_i);
     for (unsigned m = nearer; m; m &= m - 1) {
         const unsigned k = unsigned(__builtin_ctz(m));
-        best[k] = {shape_kind::sphere, first + uint32_t(leaf_i[k])};
+        best[k] = {Self, first + uint32_t(leaf_i[k])};
     }
     for (unsigned m = tied; m; m &= m - 1) {
         const unsigned k = unsigned(__builtin_ctz(m));
         const uint32_t index = first + uint32_t(leaf_i[k]);
-        if (beats(t_best[k], shape_kind::sphere, index, t_best[k], best[k])) best[k] = {shape_kind::sphere, index};
+        if (beats(t_best[k], Self, index, t_best[k], best[k])) best[k] = {Self, index};
     }
 }
 

@@ -1,0 +1,46 @@
+#pragma once
+// point_emitter: a light kind (scene/light_kinds.h): a light of no size (point_light.h), intensity
+// I in every direction. No ray can hit it; light sampling reaches it with a delta density.
+
+#include "../../core/constants.h"
+#include "../../core/sampling.h"
+#include "../../core/vec3f.h"
+#include "../light_sampling.h"
+
+namespace rt {
+
+struct point_emitter {
+    vec3f position; // relative to the scene origin
+
+    static constexpr bool is_delta = true;
+    float area() const { return 0; }
+    double area_in_double() const { return 0; }
+
+    // The direction to the point; the light set weighs its intensity by 1 / d^2. pdf 1: the
+    // direction is certain (light_choice::delta).
+    bool sample(const vec3f& p, float /*u1*/, float /*u2*/, light_sample& s) const {
+        const vec3f to = position - p;
+        const float d2 = length_squared(to);
+        if (!(d2 > 0)) return false;
+        s.distance = sqrt_f(d2);
+        s.wi = to / s.distance;
+        s.y = position;
+        s.n = {0, 0, 0};
+        s.pdf = 1;
+        return true;
+    }
+    float pdf(const vec3f&, const vec3f&, const vec3f&) const { return 0; } // no direction finds it
+    bool meet(const vec3f&, const vec3f&, vec3f&, vec3f&) const { return false; }
+
+    // A light path from the point, in a uniform direction (u's first pair): intensity I over the
+    // whole sphere, I 4 pi / pmf per path.
+    template <class Uniform>
+    void start_path(const vec3f& emission, bool /*two_sided*/, float pmf, float /*density*/, Uniform& u, ray3f& r, vec3f& throughput) const {
+        const auto [u1, u2] = draw_2d(u);
+        r.origin = position;
+        r.dir = sample_unit_sphere(u1, u2);
+        throughput = emission * (4.0f * pi_f / pmf);
+    }
+};
+
+} // namespace rt

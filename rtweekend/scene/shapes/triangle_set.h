@@ -1,0 +1,380 @@
+#pragma once
+// triangle_set: the shape kind of triangles, single ones and meshes' (scene/shape_kinds.h says
+// what a kind answers): one float array per vertex coordinate in BVH leaf order, and the SIMD
+// kernel that tests a ray against one leaf of them, floatv::width triangles per instruction.
+//
+// The test is the watertight one of triangle.h (Woop, Benthin and Wald, JCGT 2013), in float;
+// where a ray passes exactly through an edge in float, the edge is decided again in double.
+
+#include "../../core/box3f.h"
+#include "../../core/force_inline.h"
+#include "../../core/scene_error.h"
+#include "../../core/simd.h"
+#include "../../core/vec3f.h"
+#include "../../mesh.h"
+#include "../../triangle.h"
+#include "../../vec3.h"
+#include "../affine_map.h"
+#include "../leaf_query.h"
+#include "../lights/triangle_emitter.h"
+#include "../surface_hit.h"
+#include "../validate.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+// The ray in the frame of the watertight triangle test, for all of a leaf's lanes: the shear
+// that makes it point along +z and its origin permuted to (kx, ky, kz). A query prepares it once,
+// at its first triangle leaf.
+struct triangle_ray {
+    sheared_ray<float> shear;
+    float ox = 0, oy = 0, oz = 0;
+
+    triangle_ray() = default;
+    explicit triangle_ray(const ray3f& r) : shear(r.dir) {
+        ox = r.origin[shear.kx];
+        oy = r.origin[shear.ky];
+        oz = r.origin[shear.kz];
+    }
+};
+
+struct triangle_set {
+    static constexpr const char* name = "triangle";
+    // Whether its shapes move with the ray's time.
+    static constexpr bool moves = false;
+
+    // --- compiling ---------------------------------------------------------------------------
+    // A triangle as the compiler collects it: its corners relative to the scene origin, rounded
+    // to float once in double (a vertex shared by two triangles gets the same float coordinates
+    // in both, so meshes stay watertight).
+    struct input {
+        std::array<vec3f, 3> v;
+        uint32_t material;
+        std::array<vec3f, 3> n{};       // shading normals at the vertices (smooth meshes), else zero
+        bool smooth = false;
+        std::array<std::array<float, 2>, 3> uv{}; // texture coordinates at the vertices, else zero
+        bool has_uv = false;
+    };
+    // The book's triangle, and a triangle_mesh (mesh.h) face by face, under the map xf. A single
+    // triangle of zero area is an error; a mesh's are left out and counted (degenerate).
+    template <class Compiler>
+    static void add(Compiler& compiler, const triangle& t, const affine_map& xf);
+    template <class Compiler>
+    static void add(Compiler& compiler, const triangle_mesh& mesh, const affine_map& xf);
+    template <class Scene>
+    static box3f bounds(const input& t, const Scene&) {
+        box3f b;
+        for (const vec3f& v : t.v) b.grow(v);
+        return b;
+    }
+    // The BVH may split a triangle by planes through it (bvh.h, spatial splits): its corners.
+    static constexpr bool split_by_planes = true;
+    static std::array<vec3f, 3> corners(const input& t) { return t.v; }
+    // In the BVH's leaf order (a split triangle once for each leaf holding a part of it), with
+    // normals when some triangle is smooth and texture coordinates when some has them.
+    template <class Scene>
+    void lay_out(const Scene&, const std::vector<input>& inputs, const std::vector<uint32_t>& order);
+
+    // --- the compiled triangles ----------------------------------------------------------------
+    size_t count = 0; // triangles; the arrays hold floatv::width more when count > 0 (padding)
+    // The scene's triangles: count less the copies of those the BVH split by a plane through
+    // them, which are laid out once for each leaf holding a part (bvh.h, spatial splits).
+    size_t distinct = 0;
+    size_t degenerate = 0; // triangles of zero area the compiler left out (they can never be hit)
+    // Coordinate `axis` of vertex v of triangle i is vertex[3 * v + axis][i].
+    std::array<std::vector<float>, 9> vertex;
+    std::vector<uint32_t> material;
+    // Vertex normals, laid out like `vertex`, when some mesh has smooth_shading; else empty (and
+    // the geometric normal is used).
+    std::array<std::vector<float>, 9> normal;
+    // Texture coordinates: coordinate c (0: u, 1: v) of vertex k of triangle i is uv[2 * k + c][i],
+    // when some mesh has them; else empty (and every triangle's (u, v) is 0, as in the book).
+    std::array<std::vector<float>, 6> uv;
+    // Back-face culling: 1 where a hit on the back face is skipped; empty until
+    // mark_culled.
+    std::vector<float> cull;
+
+    void append(const std::array<vec3f, 3>& v, uint32_t material_index) {
+        for (int k = 0; k < 3; ++k)
+            for (int axis = 0; axis < 3; ++axis) vertex[size_t(3 * k + axis)].push_back(v[size_t(k)][axis]);
+        material.push_back(material_index);
+    }
+    void append_normals(const std::array<vec3f, 3>& n) {
+        for (int k = 0; k < 3; ++k)
+            for (int axis = 0; axis < 3; ++axis) normal[size_t(3 * k + axis)].push_back(n[size_t(k)][axis]);
+    }
+    void append_uv(const std::array<std::array<float, 2>, 3>& t) {
+        for (size_t k = 0; k < 3; ++k)
+            for (size_t c = 0; c < 2; ++c) uv[2 * k + c].push_back(t[k][c]);
+    }
+
+    size_t size() const { return count; }
+    uint32_t material_of(uint32_t i) const { return material[i]; }
+
+    // What a walk prepares for the kernel on demand: the sheared ray of the watertight test, made
+    // at the first triangle leaf the ray reaches.
+    struct ray_state {
+        std::optional<triangle_ray> sheared;
+    };
+    // Tests triangles [first, first + n) against the ray: see leaf_query.h.
+    template <query Q, shape_kind Self, class Scene>
+    bool intersect_leaf(const Scene&, const ray3f& ray, uint32_t first, uint32_t n, float& t_best, hit_ref& best,
+                        ray_state& state) const;
+    // The hit on triangle i at distance t along the ray.
+    template <class Scene>
+    void complete_hit(const Scene&, const ray3f& ray, float t, uint32_t i, const ray_state&, surface_hit& hit) const;
+    // The texture coordinates at the hit point: the vertices' uv weighted by its barycentric
+    // coordinates; 0 when the triangles have none (as the book's shapes without coordinates).
+    void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
+
+    // An emitting triangle is light-sampled by area.
+    static constexpr bool light_sampled = true;
+    triangle_emitter light_of(uint32_t i) const { return {vertex_f(0, i), vertex_f(1, i), vertex_f(2, i)}; }
+
+    // Grows b by the triangles whose material `selected` accepts.
+    template <class Scene, class Predicate>
+    void bound_where(const Scene&, Predicate selected, box3f& b) const {
+        for (uint32_t i = 0; i < count; ++i)
+            if (selected(material[i]))
+                for (int k = 0; k < 3; ++k) b.grow(vertex_f(k, i));
+    }
+    template <class Predicate>
+    void mark_culled(Predicate cullable) { cull = culling_flags(material, count, cullable); }
+
+    size_t bytes() const {
+        size_t b = (material.size()) * sizeof(uint32_t) + cull.size() * sizeof(float);
+        for (const auto& v : vertex) b += v.size() * sizeof(float);
+        for (const auto& v : normal) b += v.size() * sizeof(float);
+        for (const auto& v : uv) b += v.size() * sizeof(float);
+        return b;
+    }
+
+  private:
+    vec3f vertex_f(int v, uint32_t i) const {
+        return {vertex[size_t(3 * v)][i], vertex[size_t(3 * v + 1)][i], vertex[size_t(3 * v + 2)][i]};
+    }
+    vec3 corner(int v, uint32_t i) const {
+        return vec3(vertex[size_t(3 * v)][i], vertex[size_t(3 * v + 1)][i], vertex[size_t(3 * v + 2)][i]);
+    }
+};
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+namespace detail {
+
+// Appends the triangle (a, b, c) (world points, under the map already) to the compiler's inputs;
+// false when it has zero area in float (it could never be hit).
+template <class Compiler>
+bool add_triangle(Compiler& compiler, const point3& a, const point3& b, const point3& c, uint32_t material) {
+    const vec3 origin = compiler.origin();
+    for (const point3* p : {&a, &b, &c}) {
+        if (!finite3(*p)) throw scene_error("triangle vertex must be finite, got " + point_text(*p));
+        if (!(max_abs(*p - origin) < max_float_extent))
+            throw scene_error("triangle vertex " + point_text(*p) +
+                              " is out of single-precision range: it must be within 1e18 of the camera");
+    }
+    // Relative to the origin in double, then rounded once: a vertex shared by two triangles
+    // gets the same float coordinates in both.
+    triangle_set::input t{{vec3f(a - origin), vec3f(b - origin), vec3f(c - origin)}, material};
+    vec3 e1 = t.v[1].to_double() - t.v[0].to_double(), e2 = t.v[2].to_double() - t.v[0].to_double();
+    if (cross(e1, e2).length_squared() == 0) return false;
+    compiler.template inputs<triangle_set>().push_back(t);
+    return true;
+}
+
+} // namespace detail
+
+template <class Compiler>
+void triangle_set::add(Compiler& compiler, const triangle& t, const affine_map& xf) {
+    if (!t.mat()) throw scene_error("triangle at " + point_text(t.a()) + " has no material");
+    const uint32_t m = compiler.material_index(t.mat().get());
+    if (!detail::add_triangle(compiler, xf.point(t.a()), xf.point(t.b()), xf.point(t.c()), m))
+        throw scene_error("triangle " + point_text(t.a()) + " " + point_text(t.b()) + " " + point_text(t.c()) +
+                          " has zero area");
+}
+
+template <class Compiler>
+void triangle_set::add(Compiler& compiler, const triangle_mesh& mesh, const affine_map& xf) {
+    if (!mesh.mat) throw scene_error("triangle mesh has no material");
+    const uint32_t m = compiler.material_index(mesh.mat.get());
+    std::vector<input>& inputs = compiler.template inputs<triangle_set>();
+    for (size_t i = 0; i < mesh.faces.size(); ++i) {
+        const auto& f = mesh.faces[i];
+        for (uint32_t v : f)
+            if (v >= mesh.positions.size())
+                throw scene_error("triangle mesh face " + std::to_string(i) + " uses vertex " + std::to_string(v) +
+                                  " of " + std::to_string(mesh.positions.size()));
+        if (!detail::add_triangle(compiler, xf.point(mesh.positions[f[0]]), xf.point(mesh.positions[f[1]]),
+                                  xf.point(mesh.positions[f[2]]), m)) {
+            ++compiler.template set<triangle_set>().degenerate;
+            continue;
+        }
+        input& t = inputs.back();
+        if (mesh.smooth_shading && i < mesh.face_normals.size()) {
+            // A smooth mesh's triangle takes its corners' normals; a corner without a usable
+            // normal gets the face normal.
+            const vec3f face_normal = vec3f(unit_vector(cross(t.v[1].to_double() - t.v[0].to_double(),
+                                                              t.v[2].to_double() - t.v[0].to_double())));
+            for (size_t k = 0; k < 3; ++k) {
+                const uint32_t index = mesh.face_normals[i][k];
+                const vec3 n = index < mesh.normals.size() ? xf.normal(mesh.normals[index]) : vec3(0, 0, 0);
+                const double len = n.length();
+                t.n[k] = finite3(n) && len > 0 ? vec3f(n / len) : face_normal;
+            }
+            t.smooth = true;
+        }
+        if (i < mesh.face_uvs.size()) {
+            // A textured mesh's triangle takes its corners' (u, v); a corner without one gets (0, 0).
+            for (size_t k = 0; k < 3; ++k) {
+                const uint32_t index = mesh.face_uvs[i][k];
+                if (index >= mesh.uvs.size()) continue;
+                for (size_t c = 0; c < 2; ++c) {
+                    const double x = mesh.uvs[index][c];
+                    if (!std::isfinite(x))
+                        throw scene_error("triangle mesh texture coordinate " + std::to_string(index) + " is not finite");
+                    t.uv[k][c] = static_cast<float>(x);
+                }
+            }
+            t.has_uv = true;
+        }
+    }
+}
+
+template <class Scene>
+void triangle_set::lay_out(const Scene&, const std::vector<input>& inputs, const std::vector<uint32_t>& order) {
+    count = order.size();
+    distinct = inputs.size();
+    bool any_smooth = false, any_uv = false;
+    for (const input& t : inputs) any_smooth = any_smooth || t.smooth, any_uv = any_uv || t.has_uv;
+    auto push = [&](const input& t) {
+        append(t.v, t.material);
+        if (any_uv) append_uv(t.uv);
+        if (!any_smooth) return;
+        std::array<vec3f, 3> n = t.n;
+        if (!t.smooth) {
+            const vec3 e1 = t.v[1].to_double() - t.v[0].to_double(), e2 = t.v[2].to_double() - t.v[0].to_double();
+            const vec3 c = cross(e1, e2);
+            const vec3f face = c.length_squared() > 0 ? vec3f(unit_vector(c)) : vec3f(0, 0, 1); // padding: never hit
+            n = {face, face, face};
+        }
+        append_normals(n);
+    };
+    for (uint32_t i : order) push(inputs[i]);
+    if (count > 0)
+        for (size_t k = 0; k < floatv::width; ++k) push({{vec3f(), vec3f(), vec3f()}, 0});
+}
+
+template <query Q, shape_kind Self, class Scene>
+RTWEEKEND_FORCE_INLINE bool triangle_set::intersect_leaf(const Scene&, const ray3f& ray, uint32_t first, uint32_t n,
+                                                         float& t_best, hit_ref& best, ray_state& state) const {
+    if (!state.sheared) state.sheared.emplace(ray); // the ray's first triangle leaf
+    const triangle_ray& tr = *state.sheared;
+    constexpr size_t W = floatv::width;
+    const floatv tmin(ray.tmin), zero(0.0f);
+    const int kx = tr.shear.kx, ky = tr.shear.ky, kz = tr.shear.kz;
+    const floatv sx(tr.shear.sx), sy(tr.shear.sy), sz(tr.shear.sz);
+    const floatv ox(tr.ox), oy(tr.oy), oz(tr.oz);
+    bool found = false;
+    for (uint32_t i = first; i < first + n; i += W) {
+        auto coord = [&](int v, int axis) { return floatv::load(&vertex[size_t(3 * v + axis)][i]); };
+        floatv az = coord(0, kz) - oz, bz = coord(1, kz) - oz, cz = coord(2, kz) - oz;
+        floatv ax = coord(0, kx) - ox - sx * az, ay = coord(0, ky) - oy - sy * az;
+        floatv bx = coord(1, kx) - ox - sx * bz, by = coord(1, ky) - oy - sy * bz;
+        floatv cx = coord(2, kx) - ox - sx * cz, cy = coord(2, ky) - oy - sy * cz;
+        // Each product rounded on its own (no fused multiply-add): an edge shared by two
+        // triangles must give exactly opposite values in both (see rounded() in simd.h).
+        floatv u = rounded(cx * by) - rounded(cy * bx), v = rounded(ax * cy) - rounded(ay * cx),
+               w = rounded(bx * ay) - rounded(by * ax);
+        maskv valid = first_lanes(first + n - i);
+        maskv on_edge = valid & ((u == zero) | (v == zero) | (w == zero));
+        if (any(on_edge)) {
+            // The ray passes exactly through an edge or vertex in float: decide in double, as
+            // Woop et al. do, so the neighbouring triangles agree.
+            alignas(64) float lu[W], lv[W], lw[W];
+            u.store(lu);
+            v.store(lv);
+            w.store(lw);
+            const sheared_ray<double> shear(ray.dir.to_double());
+            const vec3 o = ray.origin.to_double();
+            for (unsigned mask = bits(on_edge); mask; mask &= mask - 1) {
+                unsigned k = unsigned(__builtin_ctz(mask));
+                double du, dv, dw;
+                triangle_edge_functions(shear, corner(0, i + k) - o, corner(1, i + k) - o, corner(2, i + k) - o, du, dv,
+                                        dw);
+                // Only the functions that were exactly zero: a zero edge is zero in the
+                // neighbouring triangle too (the float values are exact negations), so both redo
+                // it, in double; an edge that was not zero keeps its float value, which is what the
+                // neighbour, not redoing it, also has. Redoing all three would pair a double edge
+                // with its neighbour's float one, and lose rays near shared vertices.
+                if (lu[k] == 0) lu[k] = float(du);
+                if (lv[k] == 0) lv[k] = float(dv);
+                if (lw[k] == 0) lw[k] = float(dw);
+            }
+            u = floatv::load(lu);
+            v = floatv::load(lv);
+            w = floatv::load(lw);
+        }
+        maskv inside = ((u >= zero) & (v >= zero) & (w >= zero)) | ((u <= zero) & (v <= zero) & (w <= zero));
+        maskv candidates = valid & inside;
+        if (!any(candidates)) continue;
+        floatv det = u + v + w;
+        floatv t = (u * (sz * az) + v * (sz * bz) + w * (sz * cz)) / det; // det = 0: inf or NaN, rejected
+        // The determinant is positive exactly when the ray meets the front face (the side the
+        // counter-clockwise normal points to): culled triangles keep only those hits.
+        if constexpr (Q == query::closest_culled) candidates = candidates & ((det * floatv::load(&cull[i])) >= zero);
+        maskv hits = candidates & within_range<Q>(t, tmin, t_best);
+        if (!any(hits)) continue;
+        if constexpr (Q == query::any) return true;
+        found |= take_closest(hits, t, Self, i, t_best, best);
+    }
+    return found;
+}
+
+template <class Scene>
+void triangle_set::complete_hit(const Scene&, const ray3f& ray, float t, uint32_t i, const ray_state&,
+                                surface_hit& hit) const {
+    // The point from its barycentric weights lies on the triangle, unlike o + t d.
+    const vec3 a = corner(0, i), b = corner(1, i), c = corner(2, i), o = ray.origin.to_double();
+    double u, v, w;
+    triangle_edge_functions(sheared_ray<double>(ray.dir.to_double()), a - o, b - o, c - o, u, v, w);
+    double det = u + v + w;
+    vec3 p = det != 0 ? (u * a + v * b + w * c) / det : ray.at(t).to_double();
+    vec3f outward = vec3f(unit_vector(cross(b - a, c - a)));
+    hit.p = vec3f(p);
+    hit.set_face_normal(ray.dir, outward);
+    if (!normal[0].empty() && det != 0) {
+        // Smooth shading: the vertex normals weighted by the barycentric coordinates.
+        auto vertex_normal = [&](int k) {
+            return vec3(normal[size_t(3 * k)][i], normal[size_t(3 * k + 1)][i], normal[size_t(3 * k + 2)][i]);
+        };
+        vec3 n = (u * vertex_normal(0) + v * vertex_normal(1) + w * vertex_normal(2)) / det;
+        double len = n.length();
+        if (len > 0) hit.shading_normal = hit.front_face ? vec3f(n / len) : vec3f(-n / len);
+    }
+    hit.offset = 0; // the barycentric point is within an ulp of the plane; the ray offset suffices
+    hit.material = material[i];
+}
+
+inline void triangle_set::surface_coordinates(const surface_hit& hit, double& u, double& v) const {
+    u = v = 0;
+    const uint32_t i = hit.index;
+    const vec3 p = hit.p.to_double();
+    if (uv[0].empty()) return;
+    // Barycentric coordinates by least squares in the triangle's plane (Ericson, Real-Time
+    // Collision Detection, 3.4): p is on the plane, up to rounding.
+    const vec3 a = corner(0, i), e1 = corner(1, i) - a, e2 = corner(2, i) - a, d = p - a;
+    const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(d, e1), d21 = dot(d, e2);
+    const double det = d00 * d11 - d01 * d01;
+    if (!(det > 0)) return;
+    const double b1 = (d11 * d20 - d01 * d21) / det, b2 = (d00 * d21 - d01 * d20) / det, b0 = 1 - b1 - b2;
+    u = b0 * uv[0][i] + b1 * uv[2][i] + b2 * uv[4][i];
+    v = b0 * uv[1][i] + b1 * uv[3][i] + b2 * uv[5][i];
+}
+
+} // namespace rt
