@@ -36,6 +36,17 @@ struct scene_workload {
     rt::scene_description scene;
 };
 
+// The camera's settings beyond the book: in cam.settings, or (in trees before 2026-12-06) the
+// camera's own members.
+template <class Camera>
+auto settings_of(Camera& cam, int) -> decltype((cam.settings)) {
+    return cam.settings;
+}
+template <class Camera>
+Camera& settings_of(Camera& cam, long) {
+    return cam;
+}
+
 void copy_error(const std::exception& e, char* error, size_t size) {
     std::snprintf(error, size, "%s", e.what());
 }
@@ -103,8 +114,9 @@ void* AB_FUNCTION(_load_scene)(const char* path, int width, int spp, char* error
             cam.image_height = 0;
         }
         if (spp > 0) cam.samples_per_pixel = spp;
-        cam.threads = 1;
-        cam.quiet = true;
+        auto& settings = settings_of(cam, 0);
+        settings.threads = 1;
+        settings.quiet = true;
         return w.release();
     } catch (const std::exception& e) {
         copy_error(e, error, error_size);

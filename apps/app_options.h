@@ -118,16 +118,16 @@ struct options {
         }
         if (spp) cam.samples_per_pixel = *spp;
         if (depth) cam.max_depth = *depth;
-        if (threads) cam.threads = *threads;
-        if (adaptive) cam.adaptive_error = *adaptive;
-        if (seed) cam.seed = *seed;
-        if (estimator) cam.estimator = *estimator;
-        if (sampler) cam.sampler = *sampler;
-        if (caustic_paths) cam.caustic_paths = *caustic_paths;
-        cam.quiet = quiet;
+        if (threads) cam.settings.threads = *threads;
+        if (adaptive) cam.settings.adaptive_error = *adaptive;
+        if (seed) cam.settings.seed = *seed;
+        if (estimator) cam.settings.estimator = *estimator;
+        if (sampler) cam.settings.sampler = *sampler;
+        if (caustic_paths) cam.settings.caustic_paths = *caustic_paths;
+        cam.settings.quiet = quiet;
         // Ctrl-C during the render: the image so far (see the top).
         catch_interrupts();
-        cam.stop = &interrupt_requested;
+        cam.settings.stop = &interrupt_requested;
     }
 };
 

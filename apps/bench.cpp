@@ -179,7 +179,7 @@ bench_options parse(int argc, char** argv) {
     if (o.book_seconds.has_value() != o.book_rmse8.has_value()) usage("--book-seconds and --book-rmse8 go together");
     if ((!o.rays.empty() || !o.make_rays.empty()) && o.mesh.empty()) usage("--rays and --make-rays need --mesh");
     if (!o.rays.empty() && !o.make_rays.empty()) usage("--rays and --make-rays are separate runs");
-    if (o.threads == 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    if (o.threads == 0) o.threads = rt::processors_available();
     return o;
 }
 
@@ -210,10 +210,10 @@ void bench_scene(const bench_options& o) {
     }
     if (o.spp) cam.samples_per_pixel = *o.spp;
     if (o.depth) cam.max_depth = *o.depth;
-    if (!o.estimators.empty()) cam.estimator = o.estimators[0];
-    if (!o.samplers.empty()) cam.sampler = o.samplers[0];
-    cam.threads = o.threads;
-    cam.quiet = true;
+    if (!o.estimators.empty()) cam.settings.estimator = o.estimators[0];
+    if (!o.samplers.empty()) cam.settings.sampler = o.samplers[0];
+    cam.settings.threads = o.threads;
+    cam.settings.quiet = true;
 
     auto compile_start = std::chrono::steady_clock::now();
     rt::compiled_scene compiled = rt::compile_scene(s.world, cam.lookfrom, s.point_lights);
@@ -474,8 +474,8 @@ void bench_error(const bench_options& o) {
     if (ref.display_encoded)
         throw rt::scene_error(o.error_ref + ": the reference must be a linear image (PFM or EXR), not an 8-bit one");
     rt::scene_description s = rt::load_scene(o.scene);
-    s.cam.threads = o.threads_given ? o.threads : 0;
-    s.cam.quiet = true;
+    s.cam.settings.threads = o.threads_given ? o.threads : 0;
+    s.cam.settings.quiet = true;
     if (o.depth) s.cam.max_depth = *o.depth;
     if (o.width) {
         s.cam.image_width = *o.width;
@@ -496,8 +496,8 @@ void bench_error(const bench_options& o) {
         for (rt::sampler_kind k : o.samplers) variants.push_back(rt::sampler_name(k));
     else if (o.estimators.size() > 1)
         for (rt::path_estimator e : o.estimators) variants.push_back(rt::estimator_name(e));
-    if (!o.estimators.empty()) s.cam.estimator = o.estimators[0];
-    if (!o.samplers.empty()) s.cam.sampler = o.samplers[0];
+    if (!o.estimators.empty()) s.cam.settings.estimator = o.estimators[0];
+    if (!o.samplers.empty()) s.cam.settings.sampler = o.samplers[0];
     std::vector<error_point> points;
     if (variants.empty()) {
         for (int spp = 1; spp <= o.max_spp; spp *= 2) points.push_back({"uniform", spp, 0, 0, 0, 0, {}, {}});
@@ -517,11 +517,11 @@ void bench_error(const bench_options& o) {
             error_point& p = points[i];
             rt::camera cam = s.cam;
             cam.samples_per_pixel = p.spp;
-            cam.adaptive_error = p.adaptive_error;
+            cam.settings.adaptive_error = p.adaptive_error;
             for (rt::path_estimator e : o.estimators)
-                if (p.mode == rt::estimator_name(e)) cam.estimator = e;
+                if (p.mode == rt::estimator_name(e)) cam.settings.estimator = e;
             for (rt::sampler_kind k : o.samplers)
-                if (p.mode == rt::sampler_name(k)) cam.sampler = k;
+                if (p.mode == rt::sampler_name(k)) cam.settings.sampler = k;
             rt::render_result r = rt::render(cam, s.world, s.point_lights);
             seconds[i].push_back(r.stats.seconds);
             p.seconds = median(seconds[i]);
@@ -667,7 +667,7 @@ void bench_error(const bench_options& o) {
             series.push_back(book);
         }
         app::plot_options po;
-        int threads = s.cam.threads == 0 ? int(std::max(1u, std::thread::hardware_concurrency())) : s.cam.threads;
+        int threads = s.cam.settings.threads == 0 ? rt::processors_available() : s.cam.settings.threads;
         const std::string scene_name = std::filesystem::path(o.scene).stem().string();
         po.title = "Error against render time, " + scene_name + " " + std::to_string(ref.pixels.width()) + "x" +
                    std::to_string(ref.pixels.height()) + " (rtweekend: " + std::to_string(threads) + " thread" +
@@ -707,8 +707,8 @@ void bench_user_shapes(const bench_options& o) {
     cam.lookfrom = rt::point3(0, 12, 30);
     cam.lookat = rt::point3(0, 0, 0);
     cam.vfov = 40;
-    cam.threads = o.threads;
-    cam.quiet = true;
+    cam.settings.threads = o.threads;
+    cam.settings.quiet = true;
     std::vector<double> with_box, without_box;
     uint64_t rays = 0;
     for (int run = 0; run < o.runs; ++run) {

@@ -107,7 +107,7 @@ inline std::vector<std::string> xml_output_paths(const rt::whitted_scene& scene,
 // A text scene's render settings: the camera's, with --samples A:B as the sample range (checked
 // against the render's samples per pixel) and the sums kept for the slice.
 inline rt::render_settings text_scene_settings(const options& opt, const rt::camera& cam) {
-    rt::render_settings settings = cam.settings();
+    rt::render_settings settings = cam.effective_settings();
     if (opt.samples) {
         if (opt.samples->second > settings.samples_per_pixel)
             throw rt::scene_error("--samples " + std::to_string(opt.samples->first) + ":" +
@@ -147,12 +147,12 @@ inline std::vector<rt::point_light> xml_path_lights(const rt::whitted_scene& sce
     return lights;
 }
 
-inline rt::whitted_options whitted_settings(const options& opt) {
-    rt::whitted_options options;
-    options.threads = opt.threads.value_or(0);
-    options.cull_back_faces = opt.cull_back_faces.value_or(false);
-    options.quiet = opt.quiet;
-    return options;
+inline rt::render_settings whitted_settings(const options& opt) {
+    rt::render_settings settings = rt::whitted_renderer::defaults();
+    settings.threads = opt.threads.value_or(0);
+    settings.whitted.cull_back_faces = opt.cull_back_faces.value_or(false);
+    settings.quiet = opt.quiet;
+    return settings;
 }
 
 // The settings that decide a sample's value besides those a slice records on their own (size,
@@ -223,11 +223,12 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
     settings.stop = &interrupt_requested;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
-    const std::vector<rt::point_light> lights = xml_path_lights(scene);
+    // One compiled scene for every camera, around the first (as the Whitted integrator's).
+    const rt::compiled_scene compiled = rt::compile_scene(scene.world, scene.cameras[0].position, xml_path_lights(scene));
     const size_t cameras = scene.cameras.size();
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);
-        rt::render_result r = rt::path_trace(scene.world, rt::view_camera_frame(scene.cameras[i]), env, settings, lights);
+        rt::render_result r = rt::path_trace(compiled, rt::view_camera_frame(scene.cameras[i]), env, settings);
         rt::write_whitted_image(outputs[i], r.img);
         if (r.stats.interrupted) {
             std::fprintf(stderr,
@@ -254,16 +255,16 @@ inline void render_xml_scene(const options& opt, const rt::whitted_scene& scene,
         render_xml_path_traced(opt, scene, outputs);
         return;
     }
-    rt::whitted_options options = whitted_settings(opt);
+    rt::render_settings settings = whitted_settings(opt);
     // Ctrl-C: the current camera's image with the pixels traced so far (the others black), then
     // exit 130, as the path tracer does.
     catch_interrupts();
-    options.stop = &interrupt_requested;
-    rt::whitted_renderer renderer(scene, options);
+    settings.stop = &interrupt_requested;
+    const rt::whitted_renderer renderer(scene);
     const size_t cameras = scene.cameras.size();
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);
-        rt::whitted_render r = renderer.render(i);
+        rt::whitted_render r = renderer.render(i, settings);
         rt::write_whitted_image(outputs[i], r.img);
         if (r.stats.interrupted) {
             const uint64_t pixels = uint64_t(r.img.width()) * uint64_t(r.img.height());

@@ -80,7 +80,7 @@ void render_text(MPI_Comm comm, const app::options& opt, int rank) {
     // mpirun owns Ctrl-C: the ranks take the default action (it ends the job), and the render
     // cannot stop part-way (mpi_render.h).
     std::signal(SIGINT, SIG_DFL);
-    scene.cam.stop = nullptr;
+    scene.cam.settings.stop = nullptr;
     const std::string fingerprint = rt::mpi::together(comm, [&] { return rt::scene_fingerprint(scene.files); });
     rt::mpi::require_same(comm, fingerprint, "scene (the contents of its files)");
     const rt::render_settings settings = rt::mpi::together(comm, [&] {
@@ -111,9 +111,13 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
     if (opt.path_integrator) {
         const rt::render_settings settings = app::xml_path_settings(opt);
         const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
-        const std::vector<rt::point_light> lights = app::xml_path_lights(scene);
+        // One compiled scene for every camera, around the first, as render compiles it (every
+        // rank compiles it; a failure anywhere is agreed on).
+        const rt::compiled_scene compiled = rt::mpi::together(comm, [&] {
+            return rt::compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene));
+        });
         for (const rt::view_camera& c : scene.cameras) {
-            rt::render_result r = rt::mpi::path_trace(comm, scene.world, rt::view_camera_frame(c), env, settings, lights);
+            rt::render_result r = rt::mpi::path_trace(comm, compiled, rt::view_camera_frame(c), env, settings);
             images.push_back(std::move(r.img));
         }
     } else {

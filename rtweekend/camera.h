@@ -7,9 +7,11 @@
 //   image img = cam.render_image(world);     // linear radiance, for programs and tests
 //
 // The camera is the teaching surface over three engine pieces: frame() turns the view settings
-// into the geometry that generates rays (render/camera_frame.h), settings() hands the sampling
-// settings over as render_settings (render/render_settings.h), and render() runs the path tracer
-// (render/path_tracer.h) with them.
+// into the geometry that generates rays (render/camera_frame.h), `settings` holds what the books
+// do not (seed, threads, estimator, sampler, ...: render/render_settings.h), and render() compiles
+// the world and runs the path tracer (render/path_tracer.h) with them. To render one world from
+// several cameras, compile it once (scene/scene_compiler.h) and give each camera the compiled
+// scene: rt::render(cam, scene).
 
 #include "core/constants.h"
 #include "render/camera_frame.h"
@@ -85,29 +87,12 @@ class camera {
 
     std::optional<color> background; // Unset: the book's sky gradient; set: this constant colour
 
-    // Beyond the book: sampling settings the camera hands to the renderer (render_settings).
-    uint64_t seed = 0;  // Random seed: the same seed gives the same image at any thread count
-    int threads = 0;    // Worker threads; 0 = all cores
-    bool quiet = false; // No progress or statistics on stderr
-    // Adaptive sampling, off while adaptive_error is 0 (measure/adaptive.h): every pixel takes
-    // adaptive_min_samples samples, then more, in rounds, until the 95 % confidence interval of
-    // its mean is narrow enough relative to its value; samples_per_pixel is then the most a pixel
-    // takes, and render_stats::samples_saved counts the samples not taken.
-    double adaptive_error = 0;
-    int adaptive_min_samples = 16;
-    // How light is found (render/render_settings.h): next-event estimation with multiple
-    // importance sampling (the default), bsdf (the books' path tracer of books 1 and 2) or
-    // mixture (book 3's).
-    path_estimator estimator = path_estimator::nee;
-    // Where each sample's random numbers come from (render/sampler.h): sobol (Owen-scrambled,
-    // blue-noise ordered; the default), stratified (jittered) or independent (plain random).
-    sampler_kind sampler = sampler_kind::sobol;
-    // With nee and uniform sampling: light paths per pixel per sample that find caustics from the
-    // lights (render/caustic_paths.h); 0 leaves them to the camera paths.
-    double caustic_paths = 0.25;
-    // Set *stop to true to end the render early with the samples taken so far
-    // (render_settings::stop); the flag belongs to the caller and must outlive the render.
-    const std::atomic<bool>* stop = nullptr;
+    // Beyond the book: how the renderer samples (render/render_settings.h): seed (the same seed
+    // gives the same image at any thread count), threads (0: one per processor this process may
+    // use), quiet, adaptive sampling, the estimator (nee, bsdf or mixture), the sampler (sobol,
+    // stratified, independent), caustic paths, and a stop flag. Its samples_per_pixel and
+    // max_depth are the book's fields above, which a render copies in (effective_settings()).
+    render_settings settings;
 
     // Renders the world and writes a P3 PPM to stdout. On invalid input prints one error line
     // to stderr and exits with status 1 (book-style mains have no error handling of their own).
@@ -131,27 +116,19 @@ class camera {
     image render_image(const hittable& world, RayColor ray_color) const;
 
     // Throws scene_error "camera: ..." for any setting that cannot be rendered (frame(),
-    // settings() and sky() each check their own part).
+    // effective_settings() and sky() each check their own part).
     void check() const {
         (void)frame();
-        (void)settings();
+        (void)effective_settings();
         (void)sky();
     }
 
-    // The sampling settings, checked.
-    render_settings settings() const {
-        render_settings s;
+    // The settings a render takes: `settings` with the book's samples_per_pixel and max_depth,
+    // checked.
+    render_settings effective_settings() const {
+        render_settings s = settings;
         s.samples_per_pixel = samples_per_pixel;
         s.max_depth = max_depth;
-        s.seed = seed;
-        s.threads = threads;
-        s.quiet = quiet;
-        s.adaptive_error = adaptive_error;
-        s.adaptive_min_samples = adaptive_min_samples;
-        s.estimator = estimator;
-        s.sampler = sampler;
-        s.caustic_paths = caustic_paths;
-        s.stop = stop;
         s.check("camera");
         return s;
     }
@@ -292,14 +269,16 @@ inline ray camera::get_ray(double s, double t) const {
     return ray(lookfrom + offset, lower_left_corner + s * horizontal + t * vertical - lookfrom - offset, time);
 }
 
-// Renders `world` as `cam` sees it, with the path tracer: the image and the statistics.
-inline render_result render(const camera& cam, const hittable& world) {
-    return path_trace(world, cam.frame(), cam.sky(), cam.settings());
+// Renders `world` as `cam` sees it, with the path tracer (and point lights besides the world's
+// emitters): the image and the statistics. The world is compiled around the camera.
+inline render_result render(const camera& cam, const hittable& world, const std::vector<point_light>& point_lights = {}) {
+    return path_trace(world, cam.frame(), cam.sky(), cam.effective_settings(), point_lights);
 }
 
-// The same with point lights besides the world's emitters.
-inline render_result render(const camera& cam, const hittable& world, const std::vector<point_light>& point_lights) {
-    return path_trace(world, cam.frame(), cam.sky(), cam.settings(), point_lights);
+// Renders a scene compiled once (compile_scene, scene/scene_compiler.h) as `cam` sees it: one
+// compiled scene serves any number of cameras.
+inline render_result render(const camera& cam, const compiled_scene& scene) {
+    return path_trace(scene, cam.frame(), cam.sky(), cam.effective_settings());
 }
 
 // Renders with a user-supplied ray_color(const ray&, const hittable&) -> color instead of the
@@ -314,7 +293,7 @@ template <class RayColor, class>
 render_result render(const camera& cam, const hittable& world, RayColor ray_color) {
     auto start = std::chrono::steady_clock::now();
     const camera_frame f = cam.frame();
-    const render_settings s = cam.settings();
+    const render_settings s = cam.effective_settings();
     return render_samples(
         f.width, f.height, s,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {

@@ -28,8 +28,8 @@ namespace {
 
 camera adaptive_camera(int w, int h, int spp, double error) {
     camera cam = test::test_camera(w, h, spp, 8);
-    cam.adaptive_error = error;
-    cam.adaptive_min_samples = 16;
+    cam.settings.adaptive_error = error;
+    cam.settings.adaptive_min_samples = 16;
     return cam;
 }
 
@@ -40,7 +40,7 @@ template <class Value>
 render_result synthetic(const camera& cam, std::vector<int>& counts, Value value) {
     const camera_frame frame = cam.frame();
     counts.assign(size_t(frame.width) * size_t(frame.height), 0);
-    return render_samples(frame.width, frame.height, cam.settings(), [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
+    return render_samples(frame.width, frame.height, cam.effective_settings(), [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
         ++rays;
         ++counts[size_t(y) * size_t(frame.width) + size_t(x)];
         float v = value(x, y, rng.next_float());
@@ -72,7 +72,7 @@ TEST_CASE("adaptive: a pixel whose samples are all equal stops at the minimum" *
         for (int x = 0; x < 24; ++x) CHECK(r.img.pixel(x, y).y() == doctest::Approx(0.5).epsilon(1e-6));
 
     // Off (error 0): every pixel takes every sample.
-    cam.adaptive_error = 0;
+    cam.settings.adaptive_error = 0;
     render_result all = render(cam, world);
     CHECK(all.stats.samples == pixels * 256);
     CHECK(all.stats.samples_saved == 0);
@@ -160,7 +160,7 @@ TEST_CASE("adaptive: the path tracer's furnace image stays unbiased" * doctest::
     // Against a uniform render with 1024 samples, the mean over the image agrees within a few
     // standard errors (an outline pixel's samples are 0.5 or 1: standard deviation at most 0.25).
     camera uniform = cam;
-    uniform.adaptive_error = 0;
+    uniform.settings.adaptive_error = 0;
     render_result u = render(uniform, world);
     double diff = 0, max_diff = 0;
     for (int y = 0; y < 16; ++y)
@@ -178,12 +178,12 @@ TEST_CASE("adaptive: identical images at 1, 2 and 3 threads" * doctest::test_sui
     world.add(std::make_shared<sphere>(point3(0, 0, -3), 1, std::make_shared<metal>(color(0.8, 0.6, 0.4), 0.3)));
     world.add(std::make_shared<sphere>(point3(0, -101, -3), 100, std::make_shared<lambertian>(color(0.5, 0.5, 0.5))));
     camera cam = adaptive_camera(24, 16, 128, 0.05);
-    cam.threads = 1;
+    cam.settings.threads = 1;
     render_result one = render(cam, world);
     CHECK(one.stats.samples > 24 * 16 * 16);
     CHECK(one.stats.samples < 24 * 16 * 128);
     for (int threads : {2, 3}) {
-        cam.threads = threads;
+        cam.settings.threads = threads;
         render_result other = render(cam, world);
         CHECK(one.stats.samples == other.stats.samples);
         CHECK(one.stats.rays == other.stats.rays);
@@ -212,10 +212,10 @@ TEST_CASE("adaptive: invalid settings are scene errors" * doctest::test_suite("t
     hittable_list world;
     camera cam = adaptive_camera(24, 16, 64, -0.1);
     CHECK_THROWS_AS(render(cam, world), scene_error);
-    cam.adaptive_error = std::nan("");
+    cam.settings.adaptive_error = std::nan("");
     CHECK_THROWS_AS(render(cam, world), scene_error);
-    cam.adaptive_error = 0.1;
-    cam.adaptive_min_samples = 1;
+    cam.settings.adaptive_error = 0.1;
+    cam.settings.adaptive_min_samples = 1;
     CHECK_THROWS_AS(render(cam, world), scene_error);
 }
 

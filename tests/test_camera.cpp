@@ -408,7 +408,7 @@ TEST_CASE("camera::check rejects invalid settings with scene_error") {
     c.background = color(0, nan_d, 0);
     check_rejected(c, "NaN background");
     c = good;
-    c.threads = -1;
+    c.settings.threads = -1;
     check_rejected(c, "threads -1");
     c = good;
     c.lookfrom = point3(nan_d, 0, 0);
@@ -424,7 +424,7 @@ TEST_CASE("camera::check rejects invalid settings with scene_error") {
     // Boundary values that are valid.
     c = good;
     c.background = color(0, 0, 0);
-    c.threads = 0;
+    c.settings.threads = 0;
     c.defocus_angle = 0;
     c.max_depth = 1;
     c.samples_per_pixel = 1;
@@ -435,12 +435,12 @@ TEST_CASE("camera::check rejects invalid settings with scene_error") {
 TEST_CASE("camera::render_image reports invalid settings as scene_error too") {
     hittable_list world;
     camera c = general_camera();
-    c.quiet = true;
+    c.settings.quiet = true;
     c.image_width = 0;
     CHECK_THROWS_AS((void)c.render_image(world), scene_error);
     c = general_camera();
-    c.quiet = true;
-    c.threads = -1;
+    c.settings.quiet = true;
+    c.settings.threads = -1;
     CHECK_THROWS_AS((void)c.render_image(world), scene_error);
 }
 

@@ -94,8 +94,8 @@ TEST_CASE("a point light seen in a mirror lights a Lambertian patch: (A/pi) I (O
         cam.vup = vec3(1, 0, 0);
         cam.vfov = 90;
         cam.background = color(0, 0, 0);
-        cam.caustic_paths = caustic_paths;
-        cam.seed = seed;
+        cam.settings.caustic_paths = caustic_paths;
+        cam.settings.seed = seed;
         return image_mean(render(cam, world, lights).img);
     };
     // Light tracing: the mirror's share splatted by light paths (the noisy part; the direct light
@@ -201,8 +201,8 @@ TEST_CASE("an area light seen in a mirror lights a Lambertian patch, wide and zo
         cam.vup = vec3(1, 0, 0);
         cam.vfov = fov;
         cam.background = color(0, 0, 0);
-        cam.caustic_paths = caustic_paths;
-        cam.seed = seed;
+        cam.settings.caustic_paths = caustic_paths;
+        cam.settings.seed = seed;
         return image_mean(render(cam, world).img);
     };
     // 16 x 16 pixels and 16 light paths per pixel: N = 4096 per sample. Wide, w = 0.25: a pixel
@@ -269,8 +269,8 @@ TEST_CASE("caustics seen indirectly: light tracing and the camera paths alone gi
                 cam.lookat = point3(-2, 0.8, 0);
                 cam.vfov = 60;
                 cam.background = color(0, 0, 0);
-                cam.caustic_paths = traced ? 1.0 : 0.0;
-                cam.seed = uint64_t(seed + 100 * traced);
+                cam.settings.caustic_paths = traced ? 1.0 : 0.0;
+                cam.settings.seed = uint64_t(seed + 100 * traced);
                 means.push_back(image_mean_all(render(cam, world).img));
             }
             double m = 0, var = 0;
@@ -293,15 +293,15 @@ TEST_CASE("caustics traced from the lights: the same image at one and two thread
     camera cam = s.cam;
     cam.image_width = 24;
     cam.samples_per_pixel = 8;
-    cam.quiet = true;
-    cam.caustic_paths = 2;
-    cam.threads = 1;
+    cam.settings.quiet = true;
+    cam.settings.caustic_paths = 2;
+    cam.settings.threads = 1;
     const image one = render(cam, s.world).img;
-    cam.threads = 2;
+    cam.settings.threads = 2;
     const image two = render(cam, s.world).img;
     CHECK(one.data() == two.data());
     // And the light paths did add to it: the image differs from one without them.
-    cam.caustic_paths = 0;
+    cam.settings.caustic_paths = 0;
     CHECK(render(cam, s.world).img.data() != one.data());
 }
 

@@ -580,7 +580,7 @@ TEST_CASE("fresnel: Beer's law through an absorbing slab, multiple internal refl
     cam.lookfrom = point3(0, 5, 0);
     cam.lookat = point3(0, 0, 0);
     cam.vup = vec3(0, 0, -1);
-    cam.seed = 11;
+    cam.settings.seed = 11;
     render_result r = render(cam, world);
     CHECK(r.stats.nonfinite_samples == 0);
 

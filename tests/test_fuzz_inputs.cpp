@@ -49,9 +49,10 @@ const std::string fuzz_dir = std::string(RTWEEKEND_TEST_DATA) + "/fuzz/";
 // `load` must throw one scene_error, on one line, containing every fragment.
 const auto check_refused = test::check_scene_error;
 
-whitted_render render_one_thread(const whitted_scene& scene, whitted_options opt = {}) {
+whitted_render render_one_thread(const whitted_scene& scene, whitted_settings w = {}) {
+    render_settings opt = whitted_renderer::defaults();
     opt.threads = 1;
-    opt.quiet = true;
+    opt.whitted = w;
     return render_whitted(scene, 0, opt);
 }
 
@@ -85,13 +86,13 @@ TEST_CASE("fuzz: a glass sphere between two mirrors at depth 60 takes bounded wo
     CHECK(std::isfinite(r.img.data()[0]));
     CHECK(r.img.data()[0] > 0);
 
-    whitted_options small;
+    whitted_settings small;
     small.max_branch_rays = 100;
     CHECK(render_one_thread(scene, small).stats.rays == 1 + 100);
 }
 
 TEST_CASE("fuzz: the Whitted bounds leave the test scenes' images unchanged, bit for bit" * doctest::test_suite("heavy")) {
-    whitted_options unbounded;
+    whitted_settings unbounded;
     unbounded.min_branch_weight = 0;
     unbounded.max_branch_rays = std::numeric_limits<uint32_t>::max();
     for (const char* name : {"whitted/showcase.xml", "ceng795/glass_slab.xml", "ceng795/mirror.xml"}) {
@@ -105,9 +106,10 @@ TEST_CASE("fuzz: the Whitted bounds leave the test scenes' images unchanged, bit
 
 TEST_CASE("fuzz: Whitted options out of range are refused") {
     whitted_scene scene = load_xml_scene(fuzz_dir + "facing_mirrors.xml");
-    whitted_options bad;
-    bad.min_branch_weight = std::numeric_limits<float>::quiet_NaN();
-    check_refused([&] { whitted_renderer renderer(scene, bad); }, {"min_branch_weight"});
+    render_settings bad = whitted_renderer::defaults();
+    bad.whitted.min_branch_weight = std::numeric_limits<float>::quiet_NaN();
+    const whitted_renderer renderer(scene);
+    check_refused([&] { renderer.render(0, bad); }, {"min_branch_weight"});
 }
 
 // --- 2. images: headers that promise what the file does not hold ---------------------------------
@@ -651,8 +653,8 @@ TEST_CASE("fuzz: Perlin noise far from the origin (the lattice index was an int 
     CHECK_FALSE(std::isfinite(noise.noise(point3(std::numeric_limits<double>::infinity(), 0, 0))));
     // The scene that found it: a marble sphere ten billion units away renders.
     scene_description scene = load_scene(fuzz_dir + "scene_noise_far.txt");
-    scene.cam.quiet = true;
-    scene.cam.threads = 1;
+    scene.cam.settings.quiet = true;
+    scene.cam.settings.threads = 1;
     const render_result r = render(scene.cam, scene.world);
     CHECK(r.img.width() == 4);
 }
@@ -699,8 +701,8 @@ TEST_CASE("fuzz: a light whose power overflows a float (the light table threw an
     // refused the infinite weight with std::invalid_argument ("render: error: alias_table: weights
     // must be finite and non-negative"). The power is now taken in double there, and it renders.
     scene_description scene = load_scene(fuzz_dir + "scene_light_power_overflow.txt");
-    scene.cam.quiet = true;
-    scene.cam.threads = 1;
+    scene.cam.settings.quiet = true;
+    scene.cam.settings.threads = 1;
     render_result r;
     CHECK_NOTHROW(r = render(scene.cam, scene.world));
     CHECK(r.img.width() == 8);

@@ -110,8 +110,8 @@ inline rt::camera test_camera(int w, int h, int spp, int depth) {
     cam.image_height = h;
     cam.samples_per_pixel = spp;
     cam.max_depth = depth;
-    cam.quiet = true;
-    cam.threads = 2;
+    cam.settings.quiet = true;
+    cam.settings.threads = 2;
     return cam;
 }
 

@@ -312,9 +312,9 @@ TEST_CASE("instances: a moving sphere inside an instance moves with the ray's ti
         room.add(std::make_shared<translate>(std::make_shared<scale>(mesh, vec3(0.3, 0.2, 0.3)), vec3(0.7 * (i - 1), 0, -1.5)));
     room.add(std::make_shared<translate>(world.objects[0], vec3(0, 0.2, -2)));
     camera cam = test::test_camera(20, 12, 4, 5);
-    cam.threads = 1;
+    cam.settings.threads = 1;
     const render_result one = test::render_checked(cam, room);
-    cam.threads = 2;
+    cam.settings.threads = 2;
     CHECK(test::same_bits(one.img, test::render_checked(cam, room).img));
 }
 

@@ -31,9 +31,9 @@ void check_same_scene(Make make, const std::string& file) {
     for (camera* cam : {&code.cam, &s.cam}) {
         cam->image_width = 24;
         cam->samples_per_pixel = 4;
-        cam->quiet = true;
-        cam->threads = 2;
-        cam->seed = 7;
+        cam->settings.quiet = true;
+        cam->settings.threads = 2;
+        cam->settings.seed = 7;
     }
     CHECK(code.cam.height() == s.cam.height());
     render_result a = render(code.cam, code.world), b = render(s.cam, s.world, s.point_lights);

@@ -60,8 +60,8 @@ camera pinpoint_camera(point3 from, point3 at, vec3 up, int size, int spp, path_
     cam.vup = up;
     cam.vfov = 1e-4;
     cam.background = color(0, 0, 0);
-    cam.estimator = e;
-    cam.sampler = k;
+    cam.settings.estimator = e;
+    cam.settings.sampler = k;
     return cam;
 }
 
@@ -244,15 +244,15 @@ void check_estimators_agree(const light_scene& scene, int width, int seeds, int 
             camera cam = scene.cam;
             cam.image_width = width;
             cam.samples_per_pixel = spp;
-            cam.quiet = true;
-            cam.threads = 2;
-            cam.seed = uint64_t(1000 * int(e) + k);
-            cam.estimator = e;
+            cam.settings.quiet = true;
+            cam.settings.threads = 2;
+            cam.settings.seed = uint64_t(1000 * int(e) + k);
+            cam.settings.estimator = e;
             // Independent numbers: the statistics below assume per-pixel errors independent across
             // seeds with light tails at 32 spp. With Sobol's stratification the common part of the
             // error shrinks and the rare caustic paths of bsdf stand out further (its agreement at
             // 256 spp is checked by hand in BENCHMARKS.md); test_sampler.cpp tests the samplers.
-            cam.sampler = sampler_kind::independent;
+            cam.settings.sampler = sampler_kind::independent;
             image img = test::render_checked(cam, scene.world).img;
             m.sum.resize(size_t(img.width() * img.height()), 0.0);
             m.sum2.resize(m.sum.size(), 0.0);
@@ -323,7 +323,7 @@ TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it a
     cam.max_depth = 400;
     render_result r_nee = test::render_checked(cam, world);
     check_mean(r_nee.img, expected, "nee (roulette)");
-    cam.estimator = path_estimator::bsdf;
+    cam.settings.estimator = path_estimator::bsdf;
     render_result r_bsdf = test::render_checked(cam, world);
     check_mean(r_bsdf.img, expected, "bsdf (no roulette)");
 }

@@ -233,7 +233,7 @@ TEST_CASE("render: a convex mesh in a white furnace renders its albedo exactly, 
         cam.lookfrom = point3(2.2, 1.9, 3.1) + vec3(offset, offset, -offset);
         cam.lookat = point3(0.5, 0.5, 0.5) + vec3(offset, offset, -offset);
         cam.background = color(1, 1, 1);
-        cam.quiet = true;
+        cam.settings.quiet = true;
         render_result r = render(cam, world);
         CHECK(r.stats.nonfinite_samples == 0);
         int cube = 0, sky = 0, other = 0;
@@ -262,10 +262,10 @@ TEST_CASE("render: the bunny renders without NaN, identically at 1 and 2 threads
     cam.samples_per_pixel = 4;
     cam.lookfrom = point3(0, 6, 25); // the bunny spans x -5..5, y 0..9.7, z -3.7..3.8
     cam.lookat = point3(0, 4.5, 0);
-    cam.quiet = true;
-    cam.threads = 1;
+    cam.settings.quiet = true;
+    cam.settings.threads = 1;
     render_result one = render(cam, world);
-    cam.threads = 2;
+    cam.settings.threads = 2;
     render_result two = render(cam, world);
     CHECK(one.stats.nonfinite_samples == 0);
     CHECK(one.img.data() == two.img.data());

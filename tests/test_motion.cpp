@@ -191,9 +191,9 @@ TEST_CASE("motion: a motion-blurred render is bit-identical at 1 and 2 threads, 
     };
     const hittable_list moving = scene_with(true), still = scene_with(false);
     camera cam = test::test_camera(24, 16, 8, 6);
-    cam.threads = 1;
+    cam.settings.threads = 1;
     const render_result one = test::render_checked(cam, moving);
-    cam.threads = 2;
+    cam.settings.threads = 2;
     const render_result two = test::render_checked(cam, moving);
     CHECK(test::same_bits(one.img, two.img));
     CHECK_FALSE(test::same_bits(one.img, test::render_checked(cam, still).img));

@@ -23,9 +23,9 @@ void tiny(camera& cam) {
     cam.image_width = 24;
     cam.samples_per_pixel = 4;
     cam.max_depth = 6;
-    cam.quiet = true;
-    cam.threads = 2;
-    cam.seed = 7;
+    cam.settings.quiet = true;
+    cam.settings.threads = 2;
+    cam.settings.seed = 7;
 }
 
 // Renders a tiny version of both; they must agree bit for bit. Both are built from the C
@@ -89,8 +89,8 @@ TEST_CASE("scene files: a checker texture seen head-on shows its two colours in 
                                 "camera aspect_ratio 1\n");
     s.cam.image_width = 40;
     s.cam.samples_per_pixel = 4;
-    s.cam.quiet = true;
-    s.cam.threads = 2;
+    s.cam.settings.quiet = true;
+    s.cam.settings.threads = 2;
     render_result r = render(s.cam, s.world);
     // The view spans [-2, 2] in x and y (tan(vfov/2) * 10 = 2): pixel (5, 5) looks at about
     // (-1.5, 1.5, 0); floor sums -2 + 1 + 0 = -1: odd, blue. Pixel (15, 5) at (-0.5, 1.5):

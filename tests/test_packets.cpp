@@ -332,11 +332,11 @@ TEST_CASE("packets: a batch's paths side by side make the image of its paths one
         cam.image_width = 64;
         cam.image_height = 40;
         cam.samples_per_pixel = 8;
-        cam.threads = 2;
-        cam.quiet = true;
-        cam.caustic_paths = 0;
+        cam.settings.threads = 2;
+        cam.settings.quiet = true;
+        cam.settings.caustic_paths = 0;
         for (path_estimator e : {path_estimator::nee, path_estimator::bsdf, path_estimator::mixture}) {
-            cam.estimator = e;
+            cam.settings.estimator = e;
             const render_result batched = render(cam, d.world);
             hittable_list with_user_code = d.world;
             with_user_code.add(std::make_shared<nothing_here>());

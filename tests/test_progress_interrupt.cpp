@@ -286,13 +286,13 @@ TEST_CASE("render_samples, batched: a stop leaves every pixel the whole of the p
 // The milestone apps 02-06 render with their own ray_color through rt::render(cam, world,
 // ray_color), which returns the statistics with the image: the sample counts of an interrupted
 // render are known, as the path tracer's are.
-TEST_CASE("render(cam, world, ray_color): the statistics of a shader render, and of one stopped by cam.stop") {
+TEST_CASE("render(cam, world, ray_color): the statistics of a shader render, and of one stopped by cam.settings.stop") {
     camera cam;
     cam.image_width = 32;
     cam.aspect_ratio = 2.0; // 32x16: two 16x16 tiles
     cam.samples_per_pixel = 4;
-    cam.threads = 1;
-    cam.quiet = true;
+    cam.settings.threads = 1;
+    cam.settings.quiet = true;
     hittable_list world;
     std::atomic<bool> stop{false};
     uint64_t calls = 0, stop_at = 0;
@@ -312,7 +312,7 @@ TEST_CASE("render(cam, world, ray_color): the statistics of a shader render, and
     // Stopped at the 600th call: passes of 1, 1 and 2 samples per pixel (512, 512, 1024 calls);
     // call 600 is the 88th of the second pass, pixel 87 of tile 0, which finishes: pixels 0..87
     // of tile 0 took 2 samples, the rest 1.
-    cam.stop = &stop;
+    cam.settings.stop = &stop;
     calls = 0;
     stop_at = 600;
     render_result part = render(cam, world, shade);

@@ -182,7 +182,7 @@ camera mixed_camera() {
     cam.lookat = point3(0, 0, -1);
     cam.defocus_angle = 4;
     cam.focus_dist = 3.4;
-    cam.seed = 42;
+    cam.settings.seed = 42;
     return cam;
 }
 
@@ -191,11 +191,11 @@ camera mixed_camera() {
 TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matters" * doctest::test_suite("threads")) {
     const hittable_list world = mixed_scene();
     camera cam = mixed_camera();
-    cam.threads = 1;
+    cam.settings.threads = 1;
     render_result r1 = render(cam, world);
-    cam.threads = 2;
+    cam.settings.threads = 2;
     render_result r2 = render(cam, world);
-    cam.threads = 3;
+    cam.settings.threads = 3;
     render_result r3 = render(cam, world);
     CHECK(test::same_bits(r1.img, r2.img));
     CHECK(test::same_bits(r1.img, r3.img));
@@ -206,11 +206,11 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
     CHECK(r1.stats.threads == 1);
 
     // The same settings again: the same image (no hidden state between renders).
-    cam.threads = 2;
+    cam.settings.threads = 2;
     CHECK(test::same_bits(render(cam, world).img, r1.img));
 
     // Another seed gives another image.
-    cam.seed = 43;
+    cam.settings.seed = 43;
     render_result other = render(cam, world);
     CHECK_FALSE(test::same_bits(other.img, r1.img));
 
@@ -232,7 +232,7 @@ TEST_CASE("render: bit-identical images at 1, 2 and 3 threads, and the seed matt
 TEST_CASE("render: threads larger than the number of tiles are capped" * doctest::test_suite("threads")) {
     hittable_list world;
     camera cam = test::test_camera(16, 16, 1, 2); // exactly one 16x16 tile
-    cam.threads = 8;
+    cam.settings.threads = 8;
     render_result r = render(cam, world);
     CHECK(r.stats.threads == 1);
     CHECK(r.stats.width == 16);
@@ -396,9 +396,9 @@ TEST_CASE("render: the book's own sphere code as a user hittable (furnace)") {
     // User and built-in spheres together (a built-in sphere behind the user one, which scattered
     // rays can reach): the image is still bit-identical at any thread count.
     world.add(std::make_shared<sphere>(point3(0, 0, -10), 3, std::make_shared<lambertian>(color(0.5, 0.5, 0.5))));
-    cam.threads = 1;
+    cam.settings.threads = 1;
     image a = render(cam, world).img;
-    cam.threads = 3;
+    cam.settings.threads = 3;
     CHECK(test::same_bits(a, render(cam, world).img));
 }
 
@@ -408,7 +408,7 @@ TEST_CASE("render: a user-written material on a built-in sphere") {
     render_result r = render(cam, world);
     check_uniform(r.img, color(double(0.9f), 0.5, 0.25));
     CHECK(r.stats.rays == 2 * test::sample_count(cam));
-    cam.threads = 1;
+    cam.settings.threads = 1;
     CHECK(test::same_bits(r.img, render(cam, world).img));
 }
 
@@ -422,15 +422,15 @@ TEST_CASE("render: a user material that calls random_double() is deterministic a
     hittable_list world = one_sphere(std::make_shared<lossy_mirror>(p));
 
     std::srand(5);
-    cam.threads = 1;
+    cam.settings.threads = 1;
     render_result r1 = render(cam, world);
     int after = std::rand();
     std::srand(5);
     CHECK(after == std::rand()); // the render did not draw from the C library's rand()
 
-    cam.threads = 2;
+    cam.settings.threads = 2;
     render_result r2 = render(cam, world);
-    cam.threads = 3;
+    cam.settings.threads = 3;
     render_result r3 = render(cam, world);
     CHECK(test::same_bits(r1.img, r2.img));
     CHECK(test::same_bits(r1.img, r3.img));
@@ -451,13 +451,13 @@ TEST_CASE("render: a user material that calls random_double() is deterministic a
     // Absorbed samples cost 1 ray, survivors 2.
     CHECK(double(r1.stats.rays) == N + survivors);
 
-    cam.seed = 1;
+    cam.settings.seed = 1;
     CHECK_FALSE(test::same_bits(render(cam, world).img, r1.img));
 }
 
 TEST_CASE("render: exceptions thrown by user code reach the caller" * doctest::test_suite("threads")) {
     camera cam = test::test_camera(40, 40, 1, 2);
-    cam.threads = 3;
+    cam.settings.threads = 3;
     hittable_list world;
     world.add(std::make_shared<throwing_hittable>());
     CHECK_THROWS_AS((void)render(cam, world), std::runtime_error);
@@ -487,7 +487,7 @@ TEST_CASE("camera::render_image(world, ray_color): the shader sees the frame's r
     cam.vfov = 90;
     cam.lookfrom = point3(1, 2, 3);
     cam.lookat = point3(1, 2, 2);
-    cam.threads = 1;
+    cam.settings.threads = 1;
     hittable_list world;
 
     std::vector<ray> seen;
@@ -525,9 +525,9 @@ TEST_CASE("camera::render_image(world, ray_color): random_double() in a shader i
         double a = random_double(), b = random_double(), c = random_double();
         return color(a, b, c);
     };
-    cam.threads = 1;
+    cam.settings.threads = 1;
     image a = cam.render_image(world, noise);
-    cam.threads = 2;
+    cam.settings.threads = 2;
     image b = cam.render_image(world, noise);
     CHECK(test::same_bits(a, b));
     // The values are means of 4 uniforms on [0, 1): in [0, 1), varying, mean 0.5 within
@@ -557,7 +557,7 @@ TEST_CASE("camera samples: thin-lens rays start on the lens disk and pass throug
     cam.vfov = 90;
     cam.focus_dist = 2;
     cam.defocus_angle = 40;
-    cam.threads = 1;
+    cam.settings.threads = 1;
     const double R = 2 * std::tan(20 * 3.14159265358979323846 / 180);
     hittable_list world;
 

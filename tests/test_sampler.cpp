@@ -382,12 +382,12 @@ TEST_CASE("every sampler: identical images at 1, 2 and 3 threads, adaptive sampl
             camera cam = test::test_camera(40, 24, 32, 8);
             cam.defocus_angle = 2;
             cam.focus_dist = 3;
-            cam.sampler = k;
-            cam.adaptive_error = adaptive;
-            cam.threads = 1;
+            cam.settings.sampler = k;
+            cam.settings.adaptive_error = adaptive;
+            cam.settings.threads = 1;
             const render_result one = render(cam, world);
             for (int threads : {2, 3}) {
-                cam.threads = threads;
+                cam.settings.threads = threads;
                 const render_result other = render(cam, world);
                 INFO(std::string(sampler_name(k)) << ", adaptive " << adaptive << ", threads " << threads);
                 CHECK(test::same_bits(one.img, other.img));
@@ -408,7 +408,7 @@ TEST_CASE("every sampler is unbiased on the cover scene, and Sobol and stratifie
     cam.image_width = 400;
     cam.samples_per_pixel = 4;
     cam.max_depth = 50;
-    cam.quiet = true;
+    cam.settings.quiet = true;
     auto mean_of = [](const image& img) {
         double s = 0;
         for (float v : img.data()) s += v;
@@ -417,7 +417,7 @@ TEST_CASE("every sampler is unbiased on the cover scene, and Sobol and stratifie
     const double ref_mean = mean_of(ref.pixels);
     double mse[3] = {0, 0, 0};
     for (sampler_kind k : all_samplers) {
-        cam.sampler = k;
+        cam.settings.sampler = k;
         const image img = test::render_checked(cam, scene.world).img;
         REQUIRE(img.height() == ref.pixels.height());
         INFO(std::string(sampler_name(k)) << ": mean " << mean_of(img) << ", reference " << ref_mean);

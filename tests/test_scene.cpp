@@ -190,7 +190,7 @@ TEST_CASE("compile_scene rejects invalid spheres and materials") {
     // render() reports the same errors (nothing is rendered from bad input).
     camera cam;
     cam.image_width = 8;
-    cam.quiet = true;
+    cam.settings.quiet = true;
     hittable_list bad = with(std::make_shared<sphere>(point3(0, 0, -2), 0, grey()));
     CHECK_THROWS_AS((void)render(cam, bad), scene_error);
 }

@@ -166,9 +166,9 @@ TEST_CASE("parse_scene: comments, blank lines, inline comments and CRLF are igno
     CHECK(s.cam.lookfrom.z() == 3);
     CHECK(s.cam.vfov == 45);
     CHECK(s.cam.image_width == 64);
-    CHECK(s.cam.seed == 17);
-    CHECK(s.cam.sampler == sampler_kind::stratified);
-    CHECK(s.cam.estimator == path_estimator::mixture);
+    CHECK(s.cam.settings.seed == 17);
+    CHECK(s.cam.settings.sampler == sampler_kind::stratified);
+    CHECK(s.cam.settings.estimator == path_estimator::mixture);
     REQUIRE(s.cam.background.has_value());
     CHECK(s.cam.background->y() == 0.2);
     const sphere& sp = sphere_at(s, 0);

@@ -89,10 +89,10 @@ struct cover_render {
         scene.cam.image_height = 0;
         scene.cam.samples_per_pixel = 6;
         scene.cam.max_depth = 4;
-        scene.cam.seed = 11;
-        scene.cam.quiet = true;
-        scene.cam.threads = 2;
-        settings = scene.cam.settings();
+        scene.cam.settings.seed = 11;
+        scene.cam.settings.quiet = true;
+        scene.cam.settings.threads = 2;
+        settings = scene.cam.effective_settings();
     }
     render_result run(int first, int end) const {
         render_settings s = settings;

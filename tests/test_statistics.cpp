@@ -691,7 +691,7 @@ TEST_CASE("furnace: fuzzy metal absorbs exactly the fraction the ball offset pre
         cam.vfov = 50;
         cam.lookfrom = point3(0, 0, 1.5);
         cam.lookat = point3(0, 0, 0);
-        cam.seed = 3;
+        cam.settings.seed = 3;
         render_result r = test::render_checked(cam, world);
 
         double expected_absorbed = 0;

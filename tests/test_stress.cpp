@@ -69,7 +69,7 @@ camera stress_camera(const vec3& t, uint64_t seed) {
     cam.vfov = 20;
     cam.lookfrom = point3(13, 2, 3) + t;
     cam.lookat = point3(0, 0, 0) + t;
-    cam.seed = seed;
+    cam.settings.seed = seed;
     return cam;
 }
 
@@ -868,7 +868,7 @@ TEST_CASE("bad input: image size, samples, depth, aspect ratio and threads") {
         CAPTURE(v);
         check_camera_rejected([&](camera& c) { c.samples_per_pixel = v; }, "samples_per_pixel");
         check_camera_rejected([&](camera& c) { c.max_depth = v; }, "max_depth");
-        check_camera_rejected([&](camera& c) { c.threads = v == 0 ? -2 : v; }, "threads");
+        check_camera_rejected([&](camera& c) { c.settings.threads = v == 0 ? -2 : v; }, "threads");
     }
     for (double v : {0.0, -0.0, -1.0, 1e-9, nan_d, inf_d, -inf_d}) {
         CAPTURE(v);
@@ -915,7 +915,7 @@ TEST_CASE("valid extremes: the camera basis depends only on directions, focus_di
     base.samples_per_pixel = 4;
     base.vfov = 50;
     base.background = color(1, 1, 1);
-    base.seed = 5;
+    base.settings.seed = 5;
     const hittable_list world = valid_world();
     const image ref = test::render_checked(base, world).img;
 

@@ -479,8 +479,8 @@ TEST_CASE("render: a textured light is sampled with its texture at the sampled p
     const hittable_list two = scene_with(
         std::make_shared<diffuse_light>(std::make_shared<checker_texture>(0.4, color(6, 4, 2), color(0, 0, 0))));
     rt::camera nee = camera(256), bsdf = camera(256);
-    nee.estimator = path_estimator::nee;
-    bsdf.estimator = path_estimator::bsdf;
+    nee.settings.estimator = path_estimator::nee;
+    bsdf.settings.estimator = path_estimator::bsdf;
     const image a = render_checked(nee, two).img, b = render_checked(bsdf, two).img;
     // The floor's mean radiance, over the whole image: the two estimators' means differ by
     // their noise only (bsdf sampling of a small light is noisy; 10 % is several of its sigmas).

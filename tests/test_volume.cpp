@@ -311,7 +311,7 @@ TEST_CASE("constant_medium: rendered through a black slab, the background is dim
     cam.max_depth = 8;
     cam.vfov = 0.5;
     cam.background = color(0.5, 0.8, 1.0);
-    cam.quiet = true;
+    cam.settings.quiet = true;
     const image img = cam.render_image(world);
     double sum = 0;
     for (int y = 0; y < img.height(); ++y)
@@ -337,7 +337,7 @@ TEST_CASE("constant_medium: furnace: white fog in a uniform white environment st
         cam.max_depth = 400;
         cam.vfov = 50;
         cam.background = color(1, 1, 1);
-        cam.quiet = true;
+        cam.settings.quiet = true;
         const image img = cam.render_image(world);
         double sum = 0, lo = 1, hi = 1;
         for (int y = 0; y < img.height(); ++y)
@@ -384,9 +384,9 @@ TEST_CASE("constant_medium: next-event estimation inside fog agrees with materia
             cam.max_depth = 30;
             cam.vfov = 45;
             cam.background = color(0, 0, 0);
-            cam.estimator = e;
-            cam.seed = uint64_t(k + 1);
-            cam.quiet = true;
+            cam.settings.estimator = e;
+            cam.settings.seed = uint64_t(k + 1);
+            cam.settings.quiet = true;
             const image img = cam.render_image(world);
             double m = 0;
             for (int y = 0; y < img.height(); ++y)

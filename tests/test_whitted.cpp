@@ -43,10 +43,9 @@ struct rendered {
 };
 
 rendered render(const rt::whitted_scene& scene, size_t camera, int threads = 0, bool cull = false) {
-    rt::whitted_options opt;
+    rt::render_settings opt = rt::whitted_renderer::defaults();
     opt.threads = threads;
-    opt.cull_back_faces = cull;
-    opt.quiet = true;
+    opt.whitted.cull_back_faces = cull;
     rt::whitted_render r = rt::render_whitted(scene, camera, opt);
     rendered out;
     out.width = r.img.width();
@@ -617,7 +616,7 @@ TEST_CASE("whitted: a user-written hittable is shaded with the material it repor
 }
 
 // The course's rule for glass seen from inside: a hit on a dielectric reached from inside it has
-// no ambient, diffuse or specular term (whitted_options::shade_inside_dielectrics, README).
+// no ambient, diffuse or specular term (whitted_settings::shade_inside_dielectrics, docs/course.md).
 TEST_CASE("whitted: a hit on glass from inside gets no local shading (the course's rule), or all of it (option)") {
     // glass_slab_shaded.xml: glass_slab.xml's slab (n = 2.4, c = (0.05,0.1,0.2), thickness 2) and
     // wall B (L_B = (250,200,150)), the glass now shaded: ka = (0.3,0.2,0.1), kd = (0.1,0.2,0.3),
@@ -656,9 +655,8 @@ TEST_CASE("whitted: a hit on glass from inside gets no local shading (the course
     REQUIRE(by_default.width == 3);
     check_pixel(by_default, 1, 1, {course[0], course[1], course[2]});
 
-    rt::whitted_options opt;
-    opt.quiet = true;
-    opt.shade_inside_dielectrics = true;
+    rt::render_settings opt = rt::whitted_renderer::defaults();
+    opt.whitted.shade_inside_dielectrics = true;
     rt::whitted_render r = rt::render_whitted(s, 0, opt);
     rendered inside_shaded{r.img.width(), r.img.height(), rt::encode_whitted_8bit(r.img), r.img.data()};
     check_pixel(inside_shaded, 1, 1, {shaded[0], shaded[1], shaded[2]});
@@ -673,7 +671,7 @@ TEST_CASE("whitted: a hit on glass from inside gets no local shading (the course
     }
 }
 
-// Interrupting a Whitted render (whitted_options::stop): a user-written sphere that counts the
+// Interrupting a Whitted render (render_settings::stop): a user-written sphere that counts the
 // rays it is asked about raises the flag, as Ctrl-C would, from inside the render.
 namespace {
 class counting_sphere : public rt::hittable {
@@ -717,9 +715,8 @@ stopped_whitted render_stopping(int threads, uint64_t stop_at, bool raised_befor
     c.width = 32;
     c.height = 16;
     s.cameras.push_back(c);
-    rt::whitted_options opt;
+    rt::render_settings opt = rt::whitted_renderer::defaults();
     opt.threads = threads;
-    opt.quiet = true;
     opt.stop = &stop;
     stopped_whitted out{rt::render_whitted(s, 0, opt), 0};
     out.calls = sphere->calls();

@@ -1,6 +1,6 @@
 #pragma once
 // The classic recursive ray tracer (T. Whitted, "An Improved Illumination Model for Shaded
-// Display", CACM 1980), as the CENG795 course defines it (README, "Whitted mode"): one ray per
+// Display", CACM 1980), as the CENG795 course defines it (docs/course.md): one ray per
 // pixel, point and ambient lights, Lambert diffuse plus Blinn-Phong specular, shadow rays, and
 // recursion through mirrors, conductors and dielectrics up to max_recursion_depth bounces.
 //
@@ -24,7 +24,7 @@
 //     surface by the material's transmittance (Beer's law);
 //   - a hit on glass from inside (a ray travelling in a dielectric reaches its surface: the back
 //     face of a dielectric) has no local shading: no ambient, diffuse or specular term, only its
-//     reflected and refracted rays. That is the course's rule (README, "Whitted mode"; see
+//     reflected and refracted rays. That is the course's rule (docs/course.md; see
 //     shade_inside_dielectrics below for the evidence); the opposite rule is an option.
 // The image holds radiance in the course's units (255 is white), unclamped; encode_whitted_8bit
 // clamps each channel to [0, 255] and truncates, as the course's reference images do.
@@ -35,7 +35,7 @@
 // order (a surface's radiance is its shading plus each lobe's weight times what that lobe's ray
 // returns, attenuated inside absorbing glass), so images are unchanged bit for bit. A glass
 // surface spawns two rays, so a tree of depth d may hold 2^(d+1) - 1 of them (a glass sphere
-// between two mirrors at depth 60 never finished); two bounds, both in whitted_options, keep the
+// between two mirrors at depth 60 never finished); two bounds, both in render_settings::whitted, keep the
 // work of a camera ray finite:
 //   - a branch is not followed when its weight, the product of the lobe weights (and Beer
 //     transmittances) from the camera, is below 2^-18 in every channel: radiance of up to 256
@@ -47,7 +47,7 @@
 // The scenes in tests/data (and showcase and bunny_glass at depths 10 and 20) render to the same
 // bytes with the bounds as without them.
 //
-// Interruption (whitted_options::stop): the scheduler polls the flag before each pixel (one
+// Interruption (render_settings::stop): the scheduler polls the flag before each pixel (one
 // camera ray and its tree), so a render stops within one pixel; the pixels not reached are black
 // (radiance 0), and render_stats says how many there are (interrupted, pixels_without_samples).
 
@@ -75,38 +75,29 @@
 
 namespace rt {
 
-struct whitted_options {
-    int threads = 0;              // 0: one per hardware thread
-    bool cull_back_faces = false; // skip back faces of opaque objects for primary and reflected rays
-    bool quiet = true;            // no progress or statistics on stderr
-    // Bounds on the tree of reflected and refracted rays behind one camera ray (see "How much is
-    // traced" above): a branch whose weight is below min_branch_weight in every channel is not
-    // followed, and at most max_branch_rays rays are traced after the camera ray.
-    float min_branch_weight = 1.0f / (1 << 24);
-    uint32_t max_branch_rays = 1u << 14;
-    // Whether a hit on a dielectric from inside gets the course's local shading (ambient, diffuse
-    // and specular terms) as a hit from outside does. Off: the course's rule, under which all the
-    // light leaving such a hit is what its reflected and refracted rays bring. On: every hit is
-    // shaded (this renderer's rule before; a shadow ray from inside starts inside the glass and is
-    // blocked by it, so in practice the difference is the ambient term ka Ia). The evidence for
-    // the course's rule is in the README ("Whitted mode"): CENG795 tracers written against the
-    // instructor's reference images skip the shading there (akifuslu/ceng795, scene.cpp), and the
-    // course scene with a shaded glass (scienceTree_glass.xml) was reported brighter than the
-    // reference only inside the glass while such hits were shaded.
-    bool shade_inside_dielectrics = false;
-    // Set to true (from any thread, e.g. an app's SIGINT handling) to stop the render between
-    // pixels; the pixels not reached are black (see "Interruption" above). The caller owns it.
-    const std::atomic<bool>* stop = nullptr;
-    // A render shared with other processes, which take the image's tiles in turn (render_share in
-    // render_settings.h; render/mpi_render.h), and whether to keep the exact sums to add up.
-    const render_share* share = nullptr;
-    bool keep_sums = false;
-};
+// Settings (render_settings, render/render_settings.h): the integrator takes one sample through
+// the centre of each pixel; it reads threads, quiet, stop, share and keep_sums, and its own:
+//   whitted.cull_back_faces       skip back faces of opaque objects for primary and reflected rays
+//   whitted.min_branch_weight, whitted.max_branch_rays
+//                                 the bounds on the tree of rays behind one camera ray (above)
+//   whitted.shade_inside_dielectrics
+//                                 whether a hit on a dielectric from inside gets the course's local
+//                                 shading (ambient, diffuse and specular terms) as a hit from outside
+//                                 does. Off: the course's rule, under which all the light leaving such
+//                                 a hit is what its reflected and refracted rays bring. On: every hit
+//                                 is shaded (this renderer's rule before; a shadow ray from inside
+//                                 starts inside the glass and is blocked by it, so in practice the
+//                                 difference is the ambient term ka Ia). The evidence for the course's
+//                                 rule is in docs/course.md: CENG795 tracers written against the
+//                                 instructor's reference images skip the shading there
+//                                 (akifuslu/ceng795, scene.cpp), and the course scene with a shaded
+//                                 glass (scienceTree_glass.xml) was reported brighter than the
+//                                 reference only inside the glass while such hits were shaded.
 
 struct whitted_render {
     image img;          // radiance, 0..255 per channel is the displayable range; not clamped
     render_stats stats; // rays counts camera, reflected, refracted and shadow rays
-    pixel_sums sums;    // with whitted_options::keep_sums: the exact sums behind img
+    pixel_sums sums;    // with render_settings::keep_sums: the exact sums behind img
 };
 
 // The course's point-light shading terms of a material that are not part of its BSDF: ambient
@@ -119,11 +110,18 @@ struct whitted_terms {
     static whitted_terms of(const compiled_material& m);
 };
 
-// Compiles the scene once, then renders any of its cameras.
+// Compiles the scene once, then renders any of its cameras, each with its own settings.
 class whitted_renderer {
   public:
-    explicit whitted_renderer(const whitted_scene& scene, const whitted_options& options = {});
-    whitted_render render(size_t camera_index) const;
+    explicit whitted_renderer(const whitted_scene& scene);
+    // The settings a render takes when none are given: one thread per processor, quiet.
+    static render_settings defaults() {
+        render_settings s;
+        s.samples_per_pixel = 1;
+        s.quiet = true;
+        return s;
+    }
+    whitted_render render(size_t camera_index, const render_settings& settings = defaults()) const;
     const compiled_scene& compiled() const { return compiled_; }
 
   private:
@@ -145,11 +143,12 @@ class whitted_renderer {
         vec3f in_flight{0, 0, 0}; // the weight of the branch being traced
     };
 
-    bool intersect(const ray3f& r, surface_hit& hit) const;
+    bool intersect(const ray3f& r, surface_hit& hit, const whitted_settings& w) const;
     // The radiance arriving along a camera ray.
-    vec3f trace(const ray3f& r, pcg32& rng, uint64_t& rays) const;
+    vec3f trace(const ray3f& r, pcg32& rng, uint64_t& rays, const whitted_settings& w) const;
     // Fills `f` for a hit at the given depth: local shading, and the delta lobes to follow.
-    void open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays, frame& f) const;
+    void open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays, frame& f,
+              const whitted_settings& w) const;
     vec3f shade(const surface_hit& hit, const ray3f& r, const compiled_material& m, const whitted_terms& terms,
                 uint64_t& rays) const;
     ray3f spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const;
@@ -160,7 +159,6 @@ class whitted_renderer {
     vec3f background_, ambient_light_;
     float shadow_ray_epsilon_ = 0;
     int max_recursion_depth_ = 0;
-    whitted_options options_;
     compiled_scene compiled_;
     std::vector<whitted_terms> terms_; // by compiled material index
     struct light_f {
@@ -171,7 +169,8 @@ class whitted_renderer {
 };
 
 // Renders camera `camera_index` of the scene.
-whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, const whitted_options& options = {});
+whitted_render render_whitted(const whitted_scene& scene, size_t camera_index,
+                              const render_settings& settings = whitted_renderer::defaults());
 
 // The course's 8-bit encoding: each channel clamped to [0, 255] and truncated (NaN gives 0).
 std::vector<unsigned char> encode_whitted_8bit(const image& img);
@@ -195,14 +194,12 @@ inline whitted_terms whitted_terms::of(const compiled_material& m) {
     return t;
 }
 
-inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whitted_options& options)
-    : cameras_(scene.cameras), options_(options),
+inline whitted_renderer::whitted_renderer(const whitted_scene& scene)
+    : cameras_(scene.cameras),
       compiled_(compile_scene(scene.world, scene.cameras.empty() ? point3(0, 0, 0) : scene.cameras[0].position)) {
     if (!std::isfinite(scene.shadow_ray_epsilon) || scene.shadow_ray_epsilon < 0)
         throw scene_error("shadow ray epsilon must be finite and non-negative");
     if (scene.max_recursion_depth < 0) throw scene_error("max recursion depth must be non-negative");
-    if (!(options.min_branch_weight >= 0 && options.min_branch_weight < 1))
-        throw scene_error("whitted_options::min_branch_weight must be in [0, 1)");
     check_color(scene.background, "background colour");
     check_color(scene.ambient_light, "ambient light");
     background_ = vec3f(scene.background);
@@ -219,8 +216,8 @@ inline whitted_renderer::whitted_renderer(const whitted_scene& scene, const whit
         check_color(l.intensity, "point light intensity");
         lights_.push_back({vec3f(l.position - compiled_.origin), vec3f(l.intensity)});
     }
-    if (options_.cull_back_faces)
-        compiled_.set_back_face_culling([&](uint32_t m) { return !compiled_.materials[m].transmits(); });
+    // Back faces the culled walk skips (whitted_settings::cull_back_faces asks for it per render).
+    compiled_.set_back_face_culling([&](uint32_t m) { return !compiled_.materials[m].transmits(); });
 }
 
 // A secondary ray from the hit point, offset by the shadow-ray epsilon (and the float error of
@@ -264,14 +261,14 @@ inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, con
     return L;
 }
 
-inline bool whitted_renderer::intersect(const ray3f& r, surface_hit& hit) const {
-    return options_.cull_back_faces ? compiled_.intersect_culling_back_faces(r, hit) : compiled_.intersect(r, hit);
+inline bool whitted_renderer::intersect(const ray3f& r, surface_hit& hit, const whitted_settings& w) const {
+    return w.cull_back_faces ? compiled_.intersect_culling_back_faces(r, hit) : compiled_.intersect(r, hit);
 }
 
 // What leaves the hit point towards the ray's origin, without the delta lobes: local shading,
 // and the lobes (mirror, conductor, glass) to follow while bounces remain.
 inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays,
-                                   frame& f) const {
+                                   frame& f, const whitted_settings& w) const {
     // A user-written hittable reports its own material; built-in shapes index the table.
     std::optional<compiled_material> reported;
     std::optional<whitted_terms> reported_terms;
@@ -285,10 +282,10 @@ inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int d
     if (stored.texture != no_texture) looked_up = textured(compiled_, stored, hit);
     const compiled_material& m = looked_up ? *looked_up : stored;
     const whitted_terms& terms = hit.user_shape ? *reported_terms : terms_[hit.material];
-    // The course's rule for glass seen from inside (whitted_options::shade_inside_dielectrics):
+    // The course's rule for glass seen from inside (whitted_settings::shade_inside_dielectrics):
     // no ambient, diffuse or specular term there, and so no shadow rays.
     const bool from_inside_glass = m.refracts() && !hit.front_face;
-    f.L = from_inside_glass && !options_.shade_inside_dielectrics ? vec3f{0, 0, 0} : shade(hit, r, m, terms, rays);
+    f.L = from_inside_glass && !w.shade_inside_dielectrics ? vec3f{0, 0, 0} : shade(hit, r, m, terms, rays);
     f.count = f.taken = 0;
     if (depth >= max_recursion_depth_) return;
 
@@ -318,16 +315,16 @@ inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int d
 // The radiance arriving along a camera ray: the recursion L(hit) = shade + sum over lobes of
 // weight x L(next hit), attenuated by Beer's law inside absorbing glass, evaluated depth first
 // with an explicit stack of frames (stack[i] is the surface at depth i).
-inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays) const {
+inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays, const whitted_settings& w) const {
     ++rays;
     surface_hit hit;
-    if (!intersect(r, hit)) return background_;
+    if (!intersect(r, hit, w)) return background_;
     frame root;
-    open(hit, r, 0, rng, rays, root);
+    open(hit, r, 0, rng, rays, root, w);
     if (root.count == 0) return root.L;
 
     std::vector<frame> stack{root};
-    uint32_t budget = options_.max_branch_rays;
+    uint32_t budget = w.max_branch_rays;
     while (true) {
         frame& f = stack.back();
         if (f.taken == f.count) {
@@ -340,10 +337,10 @@ inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays)
         }
         const branch& b = f.branches[f.taken++];
         const vec3f weight = f.weight * b.weight;
-        if (max_component(weight) < options_.min_branch_weight || budget == 0) continue; // not followed
+        if (max_component(weight) < w.min_branch_weight || budget == 0) continue; // not followed
         --budget;
         ++rays;
-        if (!intersect(b.ray, hit)) {
+        if (!intersect(b.ray, hit, w)) {
             f.L += b.weight * vec3f{0, 0, 0}; // a secondary ray that leaves the scene brings no light
             continue;
         }
@@ -353,7 +350,7 @@ inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays)
             next.attenuation = b.medium.transmittance(hit.t);
         }
         next.weight = next.attenuated ? weight * next.attenuation : weight;
-        open(hit, b.ray, int(stack.size()), rng, rays, next);
+        open(hit, b.ray, int(stack.size()), rng, rays, next, w);
         if (next.count == 0) {
             f.L += b.weight * (next.attenuated ? next.attenuation * next.L : next.L);
             continue;
@@ -363,8 +360,13 @@ inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays)
     }
 }
 
-inline whitted_render whitted_renderer::render(size_t camera_index) const {
+inline whitted_render whitted_renderer::render(size_t camera_index, const render_settings& given) const {
     auto start = std::chrono::steady_clock::now();
+    render_settings settings = given; // one ray through the centre of each pixel
+    settings.samples_per_pixel = 1;
+    settings.first_sample = settings.end_sample = 0;
+    settings.adaptive_error = 0;
+    settings.check("Whitted render settings");
     if (camera_index >= cameras_.size())
         throw scene_error("camera " + std::to_string(camera_index) + " does not exist (the scene has " +
                           std::to_string(cameras_.size()) + ")");
@@ -389,13 +391,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
     const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;
     const vec3f eye(c.position - compiled_.origin);
 
-    render_settings settings; // one ray through the centre of each pixel
-    settings.samples_per_pixel = 1;
-    settings.threads = options_.threads;
-    settings.quiet = options_.quiet;
-    settings.stop = options_.stop;
-    settings.share = options_.share;
-    settings.keep_sums = options_.keep_sums;
+    const whitted_settings& ws = settings.whitted;
     render_result out = render_samples(
         c.width, c.height, settings,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
@@ -405,14 +401,14 @@ inline whitted_render whitted_renderer::render(size_t camera_index) const {
             r.dir = vec3f(unit_vector(dir));
             r.tmin = 0;
             r.tmax = std::numeric_limits<float>::infinity();
-            return trace(r, rng, rays); // delta lobes draw no random numbers
+            return trace(r, rng, rays, ws); // delta lobes draw no random numbers
         },
         start);
     return {std::move(out.img), out.stats, std::move(out.sums)};
 }
 
-inline whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, const whitted_options& options) {
-    return whitted_renderer(scene, options).render(camera_index);
+inline whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, const render_settings& settings) {
+    return whitted_renderer(scene).render(camera_index, settings);
 }
 
 inline std::vector<unsigned char> encode_whitted_8bit(const image& img) {
@@ -437,7 +433,6 @@ inline void write_whitted_image(const std::string& path, const image& img) {
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::render_whitted;
-using rt::whitted_options;
 using rt::whitted_render;
 using rt::whitted_renderer;
 #endif

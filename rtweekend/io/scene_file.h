@@ -193,14 +193,14 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
     else if (key == "defocus_angle_deg" || key == "defocus_angle") cam.defocus_angle = one("defocus_angle");
     else if (key == "focus_dist") cam.focus_dist = one("focus_dist");
     else if (key == "aspect_ratio") cam.aspect_ratio = one("aspect_ratio");
-    else if (key == "adaptive_error") cam.adaptive_error = one("adaptive_error");
+    else if (key == "adaptive_error") cam.settings.adaptive_error = one("adaptive_error");
     else if (key == "estimator") {
         line.expect_count(3, "camera estimator nee|bsdf|mixture");
-        if (!parse_estimator(line.word(2), cam.estimator))
+        if (!parse_estimator(line.word(2), cam.settings.estimator))
             line.fail("estimator must be nee, bsdf or mixture, got '" + line.word(2) + "'");
     } else if (key == "sampler") {
         line.expect_count(3, "camera sampler sobol|stratified|independent");
-        if (!parse_sampler(line.word(2), cam.sampler))
+        if (!parse_sampler(line.word(2), cam.settings.sampler))
             line.fail("sampler must be sobol, stratified or independent, got '" + line.word(2) + "'");
     } else if (key == "background") {
         color bg = three("background");
@@ -213,8 +213,8 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
         // The same limits as render's --spp and --depth (apps/app_options.h).
         else if (key == "samples_per_pixel") cam.samples_per_pixel = line.integer(2, "samples_per_pixel", 1, 1 << 24);
         else if (key == "max_depth") cam.max_depth = line.integer(2, "max_depth", 1, 1 << 16);
-        else if (key == "seed") cam.seed = static_cast<uint64_t>(line.integer(2, "seed", 0));
-        else if (key == "adaptive_min_samples") cam.adaptive_min_samples = line.integer(2, "adaptive_min_samples", 2);
+        else if (key == "seed") cam.settings.seed = static_cast<uint64_t>(line.integer(2, "seed", 0));
+        else if (key == "adaptive_min_samples") cam.settings.adaptive_min_samples = line.integer(2, "adaptive_min_samples", 2);
         else line.fail("unknown camera key '" + key + "'");
     }
     if (key == "vfov_deg" || key == "vfov") {
@@ -225,7 +225,7 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
         line.fail("focus_dist must be positive");
     } else if (key == "aspect_ratio" && !(cam.aspect_ratio > 0)) {
         line.fail("aspect_ratio must be positive");
-    } else if (key == "adaptive_error" && !(cam.adaptive_error >= 0)) {
+    } else if (key == "adaptive_error" && !(cam.settings.adaptive_error >= 0)) {
         line.fail("adaptive_error must be 0 (off) or positive");
     }
 }

@@ -1,7 +1,9 @@
 #pragma once
-// camera_frame: the geometry that turns a pixel position into a ray, in float and relative to the
-// camera's position (the compiled scene is stored relative to the same point). The book's camera
-// (camera.h) computes one from its settings.
+// camera_frame: the geometry that turns a pixel position into a ray, in float. The book's camera
+// (camera.h) computes one from its settings. Rays start at `eye`, the camera's position relative to
+// the origin of the compiled scene it looks at (placed_in): zero when the scene was compiled
+// around the camera, as the book's camera::render compiles it, and the camera's offset from the
+// scene's origin when several cameras share one compiled scene.
 
 #include "../core/scene_error.h"
 #include "../vec3.h"
@@ -26,14 +28,31 @@ struct camera_frame {
     vec3f defocus_disk_u;       // defocus disk horizontal radius
     vec3f defocus_disk_v;       // defocus disk vertical radius
     bool thin_lens = false;     // defocus_angle > 0: rays start on the lens disk
+    vec3f eye{0, 0, 0};         // position relative to the scene origin (placed_in)
+    bool eye_at_origin = true;  // eye is zero: nothing to add
+
+    // This frame looking at a scene compiled around `origin`: rays start at position - origin.
+    // Throws scene_error when that is beyond float's range for the scene (1e18).
+    camera_frame placed_in(const point3& origin) const {
+        camera_frame f = *this;
+        const vec3 offset = position - origin;
+        if (!(std::fabs(offset.x()) < 1e18 && std::fabs(offset.y()) < 1e18 && std::fabs(offset.z()) < 1e18))
+            throw scene_error("camera position is out of single-precision range: it must be within 1e18 of the "
+                              "scene's origin");
+        f.eye = vec3f(offset);
+        f.eye_at_origin = f.eye.x == 0 && f.eye.y == 0 && f.eye.z == 0;
+        return f;
+    }
 
     // The ray through image position (x, y), in pixels from the top-left corner of the image
     // ((i + 0.5, j + 0.5) is the centre of pixel (i, j)), starting at lens position (lu, lv) in
-    // the unit disk. Direction normalised; origin relative to `position`.
+    // the unit disk. Direction normalised; origin relative to the scene origin (eye + the lens point).
     ray3f generate(float x, float y, float lu = 0, float lv = 0) const {
         vec3f target = pixel00 + (x - 0.5f) * pixel_delta_u + (y - 0.5f) * pixel_delta_v;
         vec3f origin = thin_lens ? lu * defocus_disk_u + lv * defocus_disk_v : vec3f{};
-        return {origin, normalize(target - origin)};
+        ray3f r{origin, normalize(target - origin)};
+        if (!eye_at_origin) r.origin = eye + r.origin;
+        return r;
     }
 
     // A camera ray for pixel (x, y): jittered uniformly over the pixel (through its centre when
@@ -56,8 +75,8 @@ struct camera_frame {
     void sample_rays(int n, const int* x, const int* y, pixel_sampler* const* samplers, int samples_per_pixel,
                      bool with_time, ray3f* out) const;
     // The other way round, for paths that start at the lights (caustic_paths.h): where the camera
-    // sees the point x (relative to `position`) from the lens point `lens` (relative to
-    // `position`; zero for a pinhole). Fills the unit direction from the lens to x, the distance,
+    // sees the point x from the lens point `lens` (both relative to the scene origin, as rays are;
+    // the lens point is eye for a pinhole). Fills the unit direction from the lens to x, the distance,
     // the image position in pixels (as generate() takes it) and the importance factor
     //   h^2 / (A_pixel cos^3 theta d^2),
     // with h the distance from the lens to the plane of pixel centres, A_pixel a pixel's area on
@@ -73,7 +92,10 @@ struct camera_frame {
         float px = 0, py = 0;
         float importance = 0;
     };
-    bool connect(const vec3f& x, const vec3f& lens, connection& c) const {
+    bool connect(const vec3f& x_in_scene, const vec3f& lens_in_scene, connection& c) const {
+        // In the camera's frame: relative to its position.
+        const vec3f x = eye_at_origin ? x_in_scene : x_in_scene - eye;
+        const vec3f lens = eye_at_origin ? lens_in_scene : lens_in_scene - eye;
         const vec3f across = cross(pixel_delta_u, pixel_delta_v);
         const float pixel_area = length(across);
         if (!(pixel_area > 0)) return false;
@@ -160,6 +182,7 @@ inline void camera_frame::sample_rays(int n, const int* x, const int* y, pixel_s
     for (int k = 0; k < n; ++k) {
         out[k] = ray3f{};
         out[k].origin = {org[0][k], org[1][k], org[2][k]};
+        if (!eye_at_origin) out[k].origin = eye + out[k].origin;
         out[k].dir = {dir[0][k], dir[1][k], dir[2][k]};
         out[k].time = time[k];
     }

@@ -342,11 +342,12 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
         // Light straight from the light or from an inner vertex is not a caustic.
         if (m.has_non_delta_lobe() && since_delta > 0) {
             // Joined to the camera: a point of the lens, and a shadow ray to it.
-            vec3f lens{0, 0, 0};
+            vec3f lens = frame.eye; // the lens point, relative to the scene origin as x is
             if (frame.thin_lens) {
                 const auto [l1, l2] = draw_2d(rng);
                 const vec3f d = sample_unit_disk(l1, l2);
                 lens = d.x * frame.defocus_disk_u + d.y * frame.defocus_disk_v;
+                if (!frame.eye_at_origin) lens = frame.eye + lens;
             }
             camera_frame::connection c;
             if (frame.connect(hit.p, lens, c)) {

@@ -102,6 +102,9 @@ void require_same(MPI_Comm comm, const std::string& value, const std::string& wh
 // settings.stop must be null.
 render_result path_trace(MPI_Comm comm, const hittable& world, const camera_frame& frame, const environment& env,
                          const render_settings& settings, const std::vector<point_light>& point_lights = {});
+// The same for a scene every rank has compiled already (each camera of a course scene, say).
+render_result path_trace(MPI_Comm comm, const compiled_scene& scene, const camera_frame& frame, const environment& env,
+                         const render_settings& settings);
 
 // The course scenes' Whitted integrator over ranks is in course/whitted_mpi.h.
 
@@ -336,6 +339,17 @@ inline render_result path_trace(MPI_Comm comm, const hittable& world, const came
     const detail::communicator_share share(comm, by_tiles);
     return detail::run_shared(comm, share, settings, [&](const render_settings& mine) {
         return rt::path_trace(world, frame, env, mine, point_lights);
+    });
+}
+
+inline render_result path_trace(MPI_Comm comm, const compiled_scene& scene, const camera_frame& frame,
+                                const environment& env, const render_settings& settings) {
+    const int ranks = size_of(comm);
+    const bool by_tiles = settings.adaptive_error == 0 &&
+                          !detail::split_by_samples(settings.sample_end() - settings.first_sample, ranks);
+    const detail::communicator_share share(comm, by_tiles);
+    return detail::run_shared(comm, share, settings, [&](const render_settings& mine) {
+        return rt::path_trace(scene, frame, env, mine);
     });
 }
 

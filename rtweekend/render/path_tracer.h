@@ -1,12 +1,15 @@
 #pragma once
 // The path tracer: the book's ray_color as a loop, over the compiled scene.
 //
-//   render_result r = path_trace(world, frame, environment::sky(), settings);
+//   const compiled_scene scene = compile_scene(world, origin);          // once (scene_compiler.h)
+//   render_result r = path_trace(scene, frame, environment::sky(), settings);   // any camera
+//   render_result r = path_trace(world, frame, environment::sky(), settings);   // both at once
 //
-// The world is first compiled into a flat scene (scene_compiler.h); then the scheduler
-// (scheduler.h) takes settings.samples_per_pixel samples per pixel, each one camera ray from
-// `frame` followed through at most settings.max_depth scattering events. A ray that leaves the
-// scene gathers the environment's radiance times the product of the materials' weights.
+// The scheduler (scheduler.h) takes settings.samples_per_pixel samples per pixel, each one camera
+// ray from `frame` followed through at most settings.max_depth scattering events. A ray that
+// leaves the scene gathers the environment's radiance times the product of the materials' weights.
+// A compiled scene serves any number of cameras; it is most precise near its origin, so compile it
+// around the cameras (path_trace(world, ...) compiles around the frame's position).
 
 #include "../hittable.h"
 #include "camera_frame.h"
@@ -44,12 +47,13 @@
 
 namespace rt {
 
-// Renders `world` through `frame` with the path tracer. Throws scene_error on bad input.
-render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
+// Renders the compiled scene through `frame` with the path tracer. Throws scene_error on bad input.
+render_result path_trace(const compiled_scene& scene, const camera_frame& frame, const environment& env,
                          const render_settings& settings);
-// The same with point lights, which only light sampling finds (the bsdf estimator never does).
+// Compiles `world` around the frame's position (with point lights, which only light sampling finds:
+// the bsdf estimator never does), then renders it.
 render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
-                         const render_settings& settings, const std::vector<point_light>& point_lights);
+                         const render_settings& settings, const std::vector<point_light>& point_lights = {});
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -458,18 +462,33 @@ vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3
 
 } // namespace detail
 
+namespace detail {
+render_result path_trace_from(const compiled_scene& scene, const camera_frame& frame, const environment& env,
+                              const render_settings& settings, std::chrono::steady_clock::time_point start);
+} // namespace detail
+
 #ifndef RTWEEKEND_LINK_PATH_TRACER
-RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
+RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const compiled_scene& scene, const camera_frame& frame,
                                                       const environment& env, const render_settings& settings) {
-    return path_trace(world, frame, env, settings, {});
+    return detail::path_trace_from(scene, frame, env, settings, std::chrono::steady_clock::now());
 }
 
 RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
                                                       const environment& env, const render_settings& settings,
                                                       const std::vector<point_light>& point_lights) {
-    auto start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now(); // the statistics' time includes the compile
     settings.check();
-    const compiled_scene scene = compile_scene(world, frame.position, point_lights);
+    return detail::path_trace_from(compile_scene(world, frame.position, point_lights), frame, env, settings, start);
+}
+
+// The render itself: the scene seen through `frame`, from `start` on.
+RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compiled_scene& scene,
+                                                                   const camera_frame& camera,
+                                                                   const environment& env,
+                                                                   const render_settings& settings,
+                                                                   std::chrono::steady_clock::time_point start) {
+    settings.check();
+    const camera_frame frame = camera.placed_in(scene.origin);
     const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
     const bool user_code = scene.calls_user_code();
     const bool with_time = scene.uses_time();

@@ -1,8 +1,9 @@
 #pragma once
 // render_settings: how a render samples the image, apart from what it looks at (the camera) and
-// what it traces (the scene). The scheduler (scheduler.h) and the integrators read these; the
-// book's camera keeps the same settings as its own public members and hands them over
-// (camera::settings()).
+// what it traces (the compiled scene). The scheduler (scheduler.h) and the integrators (the path
+// tracer, path_tracer.h; the Whitted integrator, course/whitted.h) read these, each the fields it
+// uses; the book's camera carries one (camera::settings), beside the book's own fields. A new
+// setting is a field here (and a flag in the apps that offer it).
 
 #include "../core/scene_error.h"
 #include "sampler.h"
@@ -72,11 +73,19 @@ inline bool parse_estimator(const std::string& name, path_estimator& e) {
     return false;
 }
 
+// The classic (Whitted) integrator's own settings: course/whitted.h says what each does.
+struct whitted_settings {
+    bool cull_back_faces = false;        // skip back faces of opaque objects for primary and reflected rays
+    float min_branch_weight = 1.0f / (1 << 24); // a branch lighter than this in every channel is not followed
+    uint32_t max_branch_rays = 1u << 14; // the most rays that follow one camera ray
+    bool shade_inside_dielectrics = false; // local shading at hits on glass from inside (the course: none)
+};
+
 struct render_settings {
     int samples_per_pixel = 10; // most samples a pixel takes (all of them without adaptive sampling)
     int max_depth = 10;         // most rays in one path (the path tracer)
     uint64_t seed = 0;          // the same seed gives the same image at any thread count
-    int threads = 0;            // worker threads; 0 = one per hardware thread
+    int threads = 0;            // worker threads; 0 = one per processor this process may use
     bool quiet = false;         // no progress or statistics on stderr
     // Adaptive sampling (measure/adaptive.h), off while adaptive_error is 0: every pixel takes
     // adaptive_min_samples samples, then more until its error estimate is small enough.
@@ -99,6 +108,8 @@ struct render_settings {
     bool keep_sums = false;
     // A render shared with other processes (see render_share above); null for a lone render.
     const render_share* share = nullptr;
+    // The Whitted integrator's (course/whitted.h); the path tracer ignores them.
+    whitted_settings whitted;
     // Set to true (from any thread, e.g. an app's SIGINT handling) to stop the render early: the
     // scheduler polls it between pixels and returns the average of the samples taken so far
     // (render_stats::interrupted). The caller owns the flag; the library installs no signal handler.
@@ -128,6 +139,8 @@ struct render_settings {
                 "pixel takes)");
         require(share == nullptr || (share->ranks >= 1 && share->rank >= 0 && share->rank < share->ranks),
                 "a shared render's rank must lie in [0, ranks)");
+        require(whitted.min_branch_weight >= 0 && whitted.min_branch_weight < 1,
+                "whitted.min_branch_weight must be in [0, 1)");
     }
 
     // The end of the sample range: end_sample, or samples_per_pixel when it is 0.

@@ -32,6 +32,7 @@
 #include "../measure/adaptive.h"
 #include "fixed_point.h"
 #include "../image/image.h"
+#include "processors.h"
 #include "render_settings.h"
 #include "../core/rng.h"
 #include "../core/vec3f.h"
@@ -359,7 +360,7 @@ inline bool stop_requested(const render_settings& settings) {
 }
 
 inline int render_threads(const render_settings& settings, int jobs) {
-    int threads = settings.threads > 0 ? settings.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    int threads = settings.threads > 0 ? settings.threads : processors_available();
     return std::max(1, std::min(threads, jobs));
 }
 

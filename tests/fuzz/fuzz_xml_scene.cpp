@@ -28,12 +28,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         rt::whitted_scene scene = rt::decode_xml_scene(parts.before, (fuzz::scratch() / "scene.xml").string());
         fuzz::shrink(scene);
-        rt::whitted_options options;
-        options.threads = 1;
-        options.quiet = true;
-        options.cull_back_faces = size % 2 == 1;
-        rt::whitted_renderer renderer(scene, options);
-        for (size_t i = 0; i < scene.cameras.size(); ++i) renderer.render(i);
+        rt::render_settings settings = rt::whitted_renderer::defaults();
+        settings.threads = 1;
+        settings.whitted.cull_back_faces = size % 2 == 1;
+        const rt::whitted_renderer renderer(scene);
+        for (size_t i = 0; i < scene.cameras.size(); ++i) renderer.render(i, settings);
     } catch (const rt::scene_error& e) {
         fuzz::refused(e);
     }

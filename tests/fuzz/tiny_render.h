@@ -19,11 +19,11 @@ inline void shrink(rt::camera& cam) {
              cam.image_width / cam.aspect_ratio > 8)
         cam.image_height = 8;
     cam.samples_per_pixel = std::min(cam.samples_per_pixel, 2);
-    cam.adaptive_min_samples = std::min(cam.adaptive_min_samples, 2);
+    cam.settings.adaptive_min_samples = std::min(cam.settings.adaptive_min_samples, 2);
     cam.max_depth = std::min(cam.max_depth, 4);
-    cam.threads = 1;
-    cam.quiet = true;
-    cam.stop = nullptr;
+    cam.settings.threads = 1;
+    cam.settings.quiet = true;
+    cam.settings.stop = nullptr;
 }
 
 inline void shrink(rt::whitted_scene& scene) {

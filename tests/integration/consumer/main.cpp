@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
     cam.image_width = 48;
     cam.samples_per_pixel = 4;
     cam.max_depth = 8;
-    cam.quiet = true;
+    cam.settings.quiet = true;
 
     try {
         rt::image img = cam.render_image(world);
