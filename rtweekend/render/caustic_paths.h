@@ -286,6 +286,56 @@ class caustic_splats {
     box3f delta_bounds_ = detail::delta_shape_bounds(scene_);
 };
 
+// A camera path's part in caustics: what the path tracer (path_tracer.h, camera_path) keeps and
+// asks, in three hooks, so that light tracing and the path tracer share every path both find.
+//   weigh_emission(lights, hit, weight)   an emitter the path hits: multiplies weight by the path
+//                                   tracer's share of the path, when light tracing finds it too
+//   join(...)                       a vertex v with a density: v joined to each point its sample's
+//                                   own light path reached past delta vertices, added to radiance
+//   bounced(...)                    after the vertex's lobe is sampled: where the path now stands
+//                                   in the patterns both strategies find
+// A default-made one is inactive (a render without caustics), and its hooks are never asked.
+class caustic_connection {
+  public:
+    // Makes it active for the camera path that starts with camera_ray: traces the sample's own
+    // light path (when a join can fit in max_depth rays) from light_rng.
+    void start(const compiled_scene& scene, const caustic_splats& splats, int max_depth, pcg32 light_rng,
+               const ray3f& camera_ray, uint64_t& rays);
+
+    bool active() const { return splats_ != nullptr; }
+    // Whether the sample's light path reached any point join() would join a vertex to.
+    bool has_points() const { return light_path.at.size() > 0; }
+    void weigh_emission(const light_set& lights, const surface_hit& hit, float& weight) const;
+    template <class VertexMaterial>
+    void join(const compiled_scene& scene, const VertexMaterial& vm, const surface_hit& hit, const vec3f& throughput,
+              int depth, int max_depth, vec3f& radiance, uint64_t& rays) const;
+    // The vertex at `hit` (scattering event `depth`, reached along arriving_dir from a vertex
+    // that drew it with density arriving_pdf) sampled s from its material m.
+    void bounced(int depth, const surface_hit& hit, const compiled_material& m, const material_sample& s,
+                 const vec3f& arriving_dir, float arriving_pdf);
+
+  private:
+    // Where the path stands in the pattern light tracing also finds: none, at x (the camera's first
+    // vertex, which sampled its non-delta lobe), past one or more delta vertices after x, or at a
+    // Lambertian inner vertex after them; and x itself, whose camera density weighs the two (asked
+    // only of the paths that end on a light).
+    enum class state : uint8_t { none, at_x, past_delta, inner };
+    const caustic_splats* splats_ = nullptr;
+    state first_ = state::none;
+    vec3f x_p, x_normal, lens;
+    // The same deeper (caustic_splats::deep_camera_path_weight): the path went from a vertex v
+    // past the first, by its non-delta lobe, to x, and on by x's non-delta lobe through delta
+    // vertices of materials without a density, with inner_vertices Lambertian ones between them;
+    // x_density is x's area density given v.
+    state deep_ = state::none;
+    int inner_vertices = 0;
+    bool left_by_density = false; // the ray left a caustic vertex by its non-delta lobe
+    float x_density = 0;
+    // The points the sample's own light path reached, which vertices like v are joined to. Last:
+    // most paths never fill it.
+    caustic_light_vertices light_path;
+};
+
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 namespace detail {
@@ -437,6 +487,92 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_spl
         if (detail::is_black(throughput)) return;
         r = detail::spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity());
     }
+}
+
+inline void caustic_connection::start(const compiled_scene& scene, const caustic_splats& splats, int max_depth,
+                                      pcg32 light_rng, const ray3f& camera_ray, uint64_t& rays) {
+    splats_ = &splats;
+    lens = camera_ray.origin;
+    if (max_depth >= 3)
+        trace_caustic_light_vertices(scene, splats, max_depth - 3, light_rng, camera_ray.time, light_path, rays);
+}
+
+inline void caustic_connection::weigh_emission(const light_set& lights, const surface_hit& hit, float& weight) const {
+    if (first_ != state::past_delta && deep_ != state::past_delta) return; // light tracing cannot find it
+    const uint32_t light = lights.light_at(hit.kind, hit.index);
+    if (light == light_set::none) return;
+    // Light tracing finds this path too: the path tracer's share of it.
+    if (first_ == state::past_delta) weight *= splats_->camera_path_weight(light, splats_->camera_density(x_p, lens, x_normal));
+    if (deep_ == state::past_delta) weight *= splats_->deep_camera_path_weight(light, x_density);
+}
+
+// This vertex v joined to each point x its sample's light path reached: the path camera -> ... ->
+// v -> x -> delta vertices -> light, as trace_caustic_path joins x to the camera, with v's
+// throughput and f in place of the camera's importance:
+//     throughput f_v(wo, dir) |cos_x| / d^2 * f_x(-dir, wi) / |cos_g(wi)| * light throughput,
+// weighed against the path tracer's finding it (caustic_splats::deep_light_path_weight).
+template <class VertexMaterial>
+void caustic_connection::join(const compiled_scene& scene, const VertexMaterial& vm, const surface_hit& hit,
+                              const vec3f& throughput, int depth, int max_depth, vec3f& radiance, uint64_t& rays) const {
+    for (int k = 0; k < light_path.at.size(); ++k) {
+        const caustic_light_vertices::vertex& x = light_path.at[k];
+        // The path tracer's path would be longer than max_depth rays.
+        if (depth + x.vertices + 3 > max_depth) return;
+        const vec3f to = x.p - hit.p;
+        const float d2 = length_squared(to);
+        if (!(d2 > 0)) continue;
+        const vec3f dir = to / sqrt_f(d2);
+        const vec3f f_v = vm.eval(dir);
+        if (detail::is_black(f_v)) continue;
+        // x as seen from v: normals on v's side.
+        const vec3f wo = -dir;
+        const bool flip = dot(wo, x.normal) < 0;
+        const shading_point sp{flip ? -x.shading_normal : x.shading_normal, flip != x.front_face};
+        const compiled_material& m = x.material; // a textured one's coloured at x
+        const vec3f f_x = m.eval(wo, x.wi, sp);
+        const float cos_in = std::fabs(dot(x.normal, x.wi)), cos_out = std::fabs(dot(x.normal, dir));
+        if (detail::is_black(f_x) || !(cos_in > 0)) continue;
+        const float weight = splats_->deep_light_path_weight(light_path.light, vm.pdf(dir) * cos_out / d2);
+        const vec3f value = throughput * f_v * f_x * x.throughput * (weight * cos_out / (d2 * cos_in));
+        if (detail::is_black(value) || !is_finite(value)) continue;
+        // The shadow ray, from v to x pushed off x on v's side.
+        light_choice end;
+        end.wi = dir;
+        end.y = x.p;
+        end.n = x.normal;
+        ++rays;
+        if (!scene.occluded(detail::shadow_ray(hit, end, false))) radiance += value;
+    }
+}
+
+RTWEEKEND_FORCE_INLINE void caustic_connection::bounced(int depth, const surface_hit& hit, const compiled_material& m,
+                                        const material_sample& s, const vec3f& arriving_dir, float arriving_pdf) {
+    const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
+    if (depth == 0) {
+        first_ = plain && !s.is_delta() ? state::at_x : state::none;
+        x_p = hit.p;
+        x_normal = hit.normal;
+    } else if (first_ != state::none && plain && s.is_delta()) {
+        first_ = state::past_delta;
+    } else if (first_ == state::past_delta && plain && m.lambertian_only()) {
+        first_ = state::inner; // its non-delta lobe sampled: the only one it has
+    } else {
+        first_ = state::none;
+    }
+    if (depth >= 1 && plain && !s.is_delta() && left_by_density) {
+        deep_ = state::at_x;
+        inner_vertices = 0;
+        x_density = arriving_pdf * std::fabs(dot(hit.normal, arriving_dir)) / (hit.t * hit.t);
+    } else if (deep_ != state::none && plain && s.is_delta() && !m.has_non_delta_lobe()) {
+        deep_ = state::past_delta;
+    } else if (deep_ == state::past_delta && plain && m.lambertian_only() &&
+               inner_vertices + 1 < caustic_light_vertices::capacity) {
+        deep_ = state::inner;
+        ++inner_vertices;
+    } else {
+        deep_ = state::none;
+    }
+    left_by_density = plain && !s.is_delta();
 }
 
 } // namespace rt

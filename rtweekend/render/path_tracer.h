@@ -59,25 +59,6 @@ render_result path_trace(const hittable& world, const camera_frame& frame, const
 
 namespace detail {
 
-// The shadow ray from `hit` to a light's sampled point y (direction wi from hit.p). Both ends are
-// pushed off their surfaces as spawned rays are (ray_offset.h): it starts where a ray leaving
-// towards y starts (spawn_ray) and ends short of y pushed off the light towards that start (an
-// area light; a point light's y is no surface), as pbrt-v4's SpawnRayTo does. Aimed along wi
-// from the pushed start instead, it ran beside the line through y, and near a sphere light's
-// silhouette it met the sphere up to ~sqrt(2 r push) before y, beyond any relative margin: the
-// light shadowed itself. From a thousand units away nee lost all of a sphere light's direct
-// light that way, and the sphere room 1.75 % of its image (tests/test_lights.cpp).
-inline ray3f shadow_ray(const surface_hit& hit, const light_choice& lc, bool in_volume) {
-    ray3f r = spawn_ray(hit, lc.wi, 0, in_volume);
-    vec3f end = lc.y;
-    if (!lc.delta) end = offset_ray_origin(lc.y, dot(r.origin - lc.y, lc.n) >= 0 ? lc.n : -lc.n);
-    const vec3f to = end - r.origin;
-    const float distance = length(to);
-    r.dir = to / distance;
-    r.tmax = distance * (1.0f - 1e-4f);
-    return r;
-}
-
 // Russian roulette (nee only): past a number of scattering events, a path whose throughput t
 // (its largest channel) has fallen below roulette_weight goes on with probability
 // q = t / roulette_weight and is weighed by 1/q when it does, so the mean is unchanged (Arvo and
@@ -156,10 +137,8 @@ struct vertex_material {
 // all of it once done().
 // Materials see the shading normal (a smooth mesh's interpolated one, folded as vertex_material
 // says; else the geometric normal). Each decision draws from its own dimension of the sampler
-// (sampler.h). With `caustics`, the paths light tracing also finds (caustic_paths.h: camera -> x,
-// its non-delta lobe sampled -> one or more delta vertices, with Lambertian vertices between runs
-// of them -> a light; and the same past the first vertex, which light tracing finds by joining the
-// path's vertices to the sample's own light path) count here by the path tracer's share.
+// (sampler.h). With `caustics`, the paths light tracing also finds count here by the path
+// tracer's share, which a caustic_connection (caustic_paths.h) works out in three hooks.
 //
 // The path tracer advances a batch's paths side by side, a bounce of each in turn: their rays
 // are traced together (as packets, compiled_scene::intersect_batch), and the processor overlaps
@@ -170,17 +149,11 @@ class camera_path {
     camera_path(const compiled_scene& scene, const environment& env, const ray3f& camera_ray, int max_depth,
                 pixel_sampler& ps, uint64_t& rays, const caustic_splats* caustics = nullptr)
         : scene(scene), env(env), lights(scene.lights), roulette_start(roulette_depth(scene.lights)),
-          max_depth(max_depth), ps(ps), rays(rays), caustics(caustics), r(camera_ray), lens(camera_ray.origin),
-          done_(max_depth <= 0) {
-        if (caustics && max_depth >= 3) {
-            // The sample's own light path, which deeper vertices are joined to, its numbers from
-            // a stream split off the sample's own, which it leaves as it was (joined to every
-            // vertex of the path, the light path gains little from stratified numbers, which cost
-            // more to draw).
-            pcg32 light_rng = ps.rng().split();
-            trace_caustic_light_vertices(scene, *caustics, max_depth - 3, light_rng, camera_ray.time,
-                                         light_path, rays);
-        }
+          max_depth(max_depth), ps(ps), rays(rays), r(camera_ray), done_(max_depth <= 0) {
+        // The sample's own light path, its numbers from a stream split off the sample's own, which
+        // it leaves as it was (joined to every vertex of the path, the light path gains little
+        // from stratified numbers, which cost more to draw).
+        if (caustics) caustic.start(scene, *caustics, max_depth, ps.rng().split(), camera_ray, rays);
     }
 
     bool done() const { return done_; }
@@ -194,7 +167,6 @@ class camera_path {
 
   private:
     void finish() { done_ = true; }
-    void join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit);
 
     const compiled_scene& scene;
     const environment& env;
@@ -202,7 +174,6 @@ class camera_path {
     const int roulette_start, max_depth;
     pixel_sampler& ps;
     uint64_t& rays;
-    const caustic_splats* caustics;
     ray3f r;
     int depth = 0;
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
@@ -212,26 +183,10 @@ class camera_path {
     bool count_emission_fully = true;
     vec3f last_p;
     float last_pdf = 0;
-    // Where the path stands in the pattern light tracing also finds: none, at x (the camera's first
-    // vertex, which sampled its non-delta lobe), past one or more delta vertices after x, or at a
-    // Lambertian inner vertex after them; and x itself, whose camera density weighs the two (asked
-    // only of the paths that end on a light).
-    enum class caustic_state : uint8_t { none, at_x, past_delta, inner } caustic = caustic_state::none;
-    vec3f x_p, x_normal;
-    // The same deeper (caustic_splats::deep_camera_path_weight): the path went from a vertex v
-    // past the first, by its non-delta lobe, to x, and on by x's non-delta lobe through delta
-    // vertices of materials without a density, with inner_vertices Lambertian ones between them;
-    // x_density is x's area density given v. light_path: the points the sample's own light path
-    // reached, which vertices like v are joined to.
-    caustic_state deep_caustic = caustic_state::none;
-    int inner_vertices = 0;
-    bool left_by_density = false; // the ray left a caustic vertex by its non-delta lobe
-    float x_density = 0;
-    const vec3f lens;
     bool done_;
-    // Last: most renders never fill it, and its room should not come between the members a bounce
-    // reads.
-    caustic_light_vertices light_path;
+    // Its part in caustics traced from the lights (caustic_paths.h); inactive without them. Last:
+    // most renders never fill it.
+    caustic_connection caustic;
 };
 
 template <path_estimator E, bool UserMaterials>
@@ -267,16 +222,8 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
                 weight = power_heuristic(last_pdf, lights.pdf(l, last_p, hit.p, outward));
             }
         }
-        if (caustic == caustic_state::past_delta) {
-            // Light tracing finds this path too: the path tracer's share of it.
-            const uint32_t l = lights.light_at(hit.kind, hit.index);
-            if (l != light_set::none)
-                weight *= caustics->camera_path_weight(l, caustics->camera_density(x_p, lens, x_normal));
-        }
-        if (deep_caustic == caustic_state::past_delta) {
-            const uint32_t l = lights.light_at(hit.kind, hit.index);
-            if (l != light_set::none) weight *= caustics->deep_camera_path_weight(l, x_density);
-        }
+        // Light tracing may find this path too: the path tracer's share of it.
+        if (caustic.active()) caustic.weigh_emission(lights, hit, weight);
         radiance += throughput * le * weight;
     }
     if (!m.scatters()) return finish(); // emitters scatter nothing
@@ -329,7 +276,8 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
 
     // Caustics past this vertex, by light tracing: joined to the points the sample's light path
     // reached past delta vertices.
-    if (caustics && light_path.at.size() > 0 && has_density && caustic_vertex(hit, m)) join_light_path(vm, hit);
+    if (caustic.active() && caustic.has_points() && has_density && caustic_vertex(hit, m))
+        caustic.join(scene, vm, hit, throughput, depth, max_depth, radiance, rays);
 
     material_sample s;
     dimension_uniforms material_u = material_uniforms(ps, depth);
@@ -356,34 +304,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
         return finish();
     }
     throughput *= s.value;
-    if (caustics) {
-        const bool plain = caustic_vertex(hit, m); // caustics: no user code in the scene
-        if (depth == 0) {
-            caustic = plain && !s.is_delta() ? caustic_state::at_x : caustic_state::none;
-            x_p = hit.p;
-            x_normal = hit.normal;
-        } else if (caustic != caustic_state::none && plain && s.is_delta()) {
-            caustic = caustic_state::past_delta;
-        } else if (caustic == caustic_state::past_delta && plain && m.lambertian_only()) {
-            caustic = caustic_state::inner; // its non-delta lobe sampled: the only one it has
-        } else {
-            caustic = caustic_state::none;
-        }
-        if (depth >= 1 && plain && !s.is_delta() && left_by_density) {
-            deep_caustic = caustic_state::at_x;
-            inner_vertices = 0;
-            x_density = last_pdf * std::fabs(dot(hit.normal, r.dir)) / (hit.t * hit.t);
-        } else if (deep_caustic != caustic_state::none && plain && s.is_delta() && !m.has_non_delta_lobe()) {
-            deep_caustic = caustic_state::past_delta;
-        } else if (deep_caustic == caustic_state::past_delta && plain && m.lambertian_only() &&
-                   inner_vertices + 1 < caustic_light_vertices::capacity) {
-            deep_caustic = caustic_state::inner;
-            ++inner_vertices;
-        } else {
-            deep_caustic = caustic_state::none;
-        }
-        left_by_density = plain && !s.is_delta();
-    }
+    if (caustic.active()) caustic.bounced(depth, hit, m, s, r.dir, last_pdf);
     count_emission_fully = E != path_estimator::nee || s.is_delta();
     last_p = hit.p;
     last_pdf = s.pdf;
@@ -398,44 +319,6 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
     r = spawn_ray(hit, s.wi, std::numeric_limits<float>::infinity(), in_volume);
     // The book: no more light is gathered past the bounce limit.
     if (++depth >= max_depth) finish();
-}
-
-// This vertex v joined to each point x its sample's light path reached: the path camera -> ... ->
-// v -> x -> delta vertices -> light, as trace_caustic_path joins x to the camera, with v's
-// throughput and f in place of the camera's importance:
-//     throughput f_v(wo, dir) |cos_x| / d^2 * f_x(-dir, wi) / |cos_g(wi)| * light throughput,
-// weighed against the path tracer's finding it (caustic_splats::deep_light_path_weight).
-template <path_estimator E, bool UserMaterials>
-void camera_path<E, UserMaterials>::join_light_path(const vertex_material<UserMaterials>& vm, const surface_hit& hit) {
-    for (int k = 0; k < light_path.at.size(); ++k) {
-        const caustic_light_vertices::vertex& x = light_path.at[k];
-        // The path tracer's path would be longer than max_depth rays.
-        if (depth + x.vertices + 3 > max_depth) return;
-        const vec3f to = x.p - hit.p;
-        const float d2 = length_squared(to);
-        if (!(d2 > 0)) continue;
-        const vec3f dir = to / sqrt_f(d2);
-        const vec3f f_v = vm.eval(dir);
-        if (is_black(f_v)) continue;
-        // x as seen from v: normals on v's side.
-        const vec3f wo = -dir;
-        const bool flip = dot(wo, x.normal) < 0;
-        const shading_point sp{flip ? -x.shading_normal : x.shading_normal, flip != x.front_face};
-        const compiled_material& m = x.material; // a textured one's coloured at x
-        const vec3f f_x = m.eval(wo, x.wi, sp);
-        const float cos_in = std::fabs(dot(x.normal, x.wi)), cos_out = std::fabs(dot(x.normal, dir));
-        if (is_black(f_x) || !(cos_in > 0)) continue;
-        const float weight = caustics->deep_light_path_weight(light_path.light, vm.pdf(dir) * cos_out / d2);
-        const vec3f value = throughput * f_v * f_x * x.throughput * (weight * cos_out / (d2 * cos_in));
-        if (is_black(value) || !is_finite(value)) continue;
-        // The shadow ray, from v to x pushed off x on v's side.
-        light_choice end;
-        end.wi = dir;
-        end.y = x.p;
-        end.n = x.normal;
-        ++rays;
-        if (!scene.occluded(shadow_ray(hit, end, false))) radiance += value;
-    }
 }
 
 // A batch's rays and hits, kept in sample_batch::workspace from batch to batch: built for each

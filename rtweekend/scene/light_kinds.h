@@ -44,7 +44,7 @@ struct light {
 
     // f(the emitter's record), for whichever kind it is.
     template <class F>
-    decltype(auto) visit(F&& f) const { return visit_value<light_kinds>(emitter, f); }
+    RTWEEKEND_FORCE_INLINE decltype(auto) visit(F&& f) const { return visit_value<light_kinds>(emitter, f); }
 
     bool is_delta() const {
         return visit([](const auto& e) { return std::decay_t<decltype(e)>::is_delta; });
