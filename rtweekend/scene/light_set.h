@@ -174,9 +174,9 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     const uint32_t slot = t.select.sample(u.next_float());
     const light& l = lights[t.members[slot]];
     const float pmf = t.select.pmf(slot);
-    const auto [u1, u2] = draw_2d(u);
+    const uniform2 uv = draw_2d(u); // named, not bound: C++17 lambdas cannot capture a binding
     light_sample ls;
-    if (!l.visit([&](const auto& e) { return e.sample(p, u1, u2, ls); }) || !(ls.pdf > 0)) return false;
+    if (!l.visit([&](const auto& e) { return e.sample(p, uv.u1, uv.u2, ls); }) || !(ls.pdf > 0)) return false;
     s.wi = ls.wi;
     s.y = ls.y;
     s.n = ls.n;
