@@ -10,28 +10,22 @@
 // output), says on stderr what it holds, and the app exits with status 130 (128 + SIGINT, as a
 // shell reports a process killed by it). A second Ctrl-C, or one once the render is over, kills at
 // once; a second SIGINT within half a second of the first is the same request delivered twice
-// (see on_interrupt).
+// (see on_interrupt, app_options.cpp).
 
 #include <rtweekend/camera.h>
-#include <rtweekend/image/image_write.h>
+#include <rtweekend/image/image.h>
+#include <rtweekend/render/scheduler.h>
 #include <rtweekend/core/scene_error.h>
 
 #include <atomic>
-#include <cctype>
-#include <cerrno>
-#include <cmath>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <iostream>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <time.h> // clock_gettime (POSIX)
 
 namespace app {
 
@@ -54,43 +48,14 @@ static_assert(std::atomic<int64_t>::is_always_lock_free, "a signal handler may o
 // A person's second Ctrl-C comes later than this.
 inline constexpr int64_t repeated_interrupt_ns = 500'000'000;
 
-// The SIGINT handler. The first asks the render to stop; a repeat within repeated_interrupt_ns is
-// ignored; a later one, or any once the render is over, ends the program at once: the default
-// action, raised again (it is delivered when the handler returns). clock_gettime and raise are
-// async-signal-safe (POSIX.1-2008, 2.4.3).
-extern "C" inline void on_interrupt(int) {
-    timespec t{};
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    const int64_t now = int64_t(t.tv_sec) * 1'000'000'000 + int64_t(t.tv_nsec) + 1; // > 0
-    int64_t seen = interrupt_state_rendering;
-    if (interrupt_state.compare_exchange_strong(seen, now)) {
-        interrupt_requested.store(true);
-        return;
-    }
-    if (seen > 0 && now - seen < repeated_interrupt_ns) return;
-    std::signal(SIGINT, SIG_DFL);
-    std::raise(SIGINT);
-}
-
 // Installs on_interrupt() for SIGINT (once), and makes a render that starts after an earlier one
 // was written stoppable by Ctrl-C again.
-inline void catch_interrupts() {
-    static const bool installed = [] {
-        std::signal(SIGINT, on_interrupt);
-        return true;
-    }();
-    (void)installed;
-    int64_t over = interrupt_state_over;
-    interrupt_state.compare_exchange_strong(over, interrupt_state_rendering);
-}
+void catch_interrupts();
 
 // The render is over: from here on Ctrl-C ends the program at once (outputs are written
 // atomically, so that leaves no half-written file), unless it repeats a request to stop that came
 // during the render (on_interrupt).
-inline void render_over() {
-    int64_t rendering = interrupt_state_rendering;
-    interrupt_state.compare_exchange_strong(rendering, interrupt_state_over);
-}
+void render_over();
 
 struct options {
     std::optional<int> width, spp, depth, threads;
@@ -109,26 +74,8 @@ struct options {
     std::vector<std::string> positional;
     std::string program; // the app's name, for messages
 
-
     // Applies the flags that were given on top of the app's own camera settings.
-    void apply(rt::camera& cam) const {
-        if (width) {
-            cam.image_width = *width;
-            cam.image_height = 0; // keep the aspect ratio
-        }
-        if (spp) cam.samples_per_pixel = *spp;
-        if (depth) cam.max_depth = *depth;
-        if (threads) cam.settings.threads = *threads;
-        if (adaptive) cam.settings.adaptive_error = *adaptive;
-        if (seed) cam.settings.seed = *seed;
-        if (estimator) cam.settings.estimator = *estimator;
-        if (sampler) cam.settings.sampler = *sampler;
-        if (caustic_paths) cam.settings.caustic_paths = *caustic_paths;
-        cam.settings.quiet = quiet;
-        // Ctrl-C during the render: the image so far (see the top).
-        catch_interrupts();
-        cam.settings.stop = &interrupt_requested;
-    }
+    void apply(rt::camera& cam) const;
 };
 
 struct description {
@@ -146,64 +93,11 @@ struct description {
 };
 
 // Whether a scene file is a CENG795 XML scene (by extension), rather than a text scene.
-inline bool is_xml_scene(const std::string& path) {
-    auto dot = path.find_last_of('.');
-    if (dot == std::string::npos) return false;
-    std::string ext = path.substr(dot);
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext == ".xml";
-}
+bool is_xml_scene(const std::string& path);
 
-inline void print_usage(const description& d, std::FILE* to) {
-    std::fprintf(to,
-                 "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
-                 "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent] [--caustic-paths X]\n"
-                 "          [-o FILE] [--quiet]\n"
-                 "%s\n"
-                 "  --width N    image width in pixels (height follows the aspect ratio)\n"
-                 "  --spp N      samples per pixel\n"
-                 "  --depth N    maximum rays per path (the book's max_depth)\n"
-                 "  --threads N  worker threads (0 = all cores)\n"
-                 "  --seed N     random seed (same seed, same image)\n"
-                 "  --adaptive E adaptive sampling: a pixel stops once its 95%% interval is narrow enough\n"
-                 "               relative to its value, E the target (--spp is then the most a pixel\n"
-                 "               takes; 0 = off)\n"
-                 "  --estimator E how light is found: nee (light sampling and material sampling weighed\n"
-                 "               by multiple importance sampling; default), bsdf (the books' path tracer of\n"
-                 "               books 1 and 2) or mixture (book 3's one-sample mixture)\n"
-                 "  --sampler S  where each sample's random numbers come from: sobol (Owen-scrambled Sobol\n"
-                 "               in Morton order, error spread as blue noise; default), stratified\n"
-                 "               (jittered) or independent (plain random numbers)\n"
-                 "  --caustic-paths X with nee: X light paths per pixel per sample find the caustics\n"
-                 "               (light through glass or off mirrors onto a surface the camera sees) from\n"
-                 "               the lights; default 0.25, 0 = leave them to the camera paths\n"
-                 "  -o FILE      write FILE (.ppm, .png, .bmp, or linear .pfm or .exr); default: P3 PPM on stdout\n"
-                 "  --quiet      no progress or statistics on stderr\n"
-                 "  --help       show this help\n",
-                 d.name, d.operands[0] ? " " : "", d.operands, d.summary);
-    if (d.slices)
-        std::fprintf(to,
-                     "  --samples A:B render samples A to B-1 of every pixel (of a render of --spp N, B <= N) and\n"
-                     "               write them as a slice: -o must name a .pfm file, which holds the slice's\n"
-                     "               mean as an image and its exact sums; `merge` adds slices up to the whole\n"
-                     "               render's image (text scenes, uniform sampling)\n");
-    if (d.xml_scenes)
-        std::fprintf(to,
-                     "For a CENG795 XML scene (.xml), every camera is rendered with the Whitted ray tracer to its\n"
-                     "ImageName (.png, .ppm, .pfm or .exr), only --threads, --quiet and these apply:\n"
-                     "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
-                     "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
-                     "  --integrator path\n"
-                     "               render with the path tracer instead (point lights with indirect light, the\n"
-                     "               diffuse reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
-                     "               --adaptive, --estimator, --sampler and --caustic-paths then apply too\n");
-}
+void print_usage(const description& d, std::FILE* to);
 
-[[noreturn]] inline void usage_error(const description& d, const std::string& message) {
-    std::fprintf(stderr, "%s: error: %s\n", d.name, message.c_str());
-    print_usage(d, stderr);
-    std::exit(2);
-}
+[[noreturn]] void usage_error(const description& d, const std::string& message);
 
 // Why parse_arguments() gave no options to run with, thrown by it: what parse() prints and the
 // status it exits with. Status 2, a usage error: "app: error: MESSAGE", then the usage, on stderr;
@@ -216,204 +110,38 @@ struct parse_stop {
 
 namespace detail {
 
-[[noreturn]] inline void stop_parsing(const std::string& message) { throw parse_stop{2, message}; }
+[[noreturn]] void stop_parsing(const std::string& message);
 
-inline long long integer_value(const std::string& flag, const std::string& text, long long min, long long max) {
-    errno = 0;
-    char* end = nullptr;
-    long long v = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE)
-        stop_parsing(flag + " needs an integer, got '" + text + "'");
-    if (v < min || v > max)
-        stop_parsing(flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
-    return v;
-}
+long long integer_value(const std::string& flag, const std::string& text, long long min, long long max);
 
-inline double real_value(const std::string& flag, const std::string& text, double min, double max) {
-    errno = 0;
-    char* end = nullptr;
-    double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-        stop_parsing(flag + " needs a number, got '" + text + "'");
-    if (v < min || v > max)
-        stop_parsing(flag + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + text);
-    return v;
-}
+double real_value(const std::string& flag, const std::string& text, double min, double max);
 
 } // namespace detail
 
 // An integer flag's value within [min, max]; a usage error (exit 2) otherwise.
-inline long long parse_integer(const description& d, const std::string& flag, const std::string& text, long long min,
-                               long long max) {
-    try {
-        return detail::integer_value(flag, text, min, max);
-    } catch (const parse_stop& stop) {
-        usage_error(d, stop.message);
-    }
-}
+long long parse_integer(const description& d, const std::string& flag, const std::string& text, long long min,
+                        long long max);
 
 // A real flag's value, finite and within [min, max]; a usage error (exit 2) otherwise.
-inline double parse_real(const description& d, const std::string& flag, const std::string& text, double min,
-                         double max) {
-    try {
-        return detail::real_value(flag, text, min, max);
-    } catch (const parse_stop& stop) {
-        usage_error(d, stop.message);
-    }
-}
+double parse_real(const description& d, const std::string& flag, const std::string& text, double min,
+                  double max);
 
 // The command line read into options, without printing or exiting: throws parse_stop instead
 // (a usage error, an unwritable output path, or --help). parse() is this for an app's main; a
 // caller that must not exit (the command-line fuzzer) calls it directly.
-inline options parse_arguments(int argc, char** argv, const description& d) {
-    using detail::stop_parsing;
-    options o;
-    o.program = d.name;
-    for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i], value;
-        bool has_inline_value = false;
-        if (arg.rfind("--", 0) == 0) {
-            auto eq = arg.find('=');
-            if (eq != std::string::npos) {
-                value = arg.substr(eq + 1);
-                arg = arg.substr(0, eq);
-                has_inline_value = true;
-            }
-        }
-        auto next = [&]() -> std::string {
-            if (has_inline_value) return value;
-            if (i + 1 >= argc) stop_parsing(arg + " needs a value");
-            return argv[++i];
-        };
-        auto integer = [&](long long min, long long max) { return detail::integer_value(arg, next(), min, max); };
-        constexpr long long max_size = 1 << 16;
-        if (arg == "--help" || arg == "-h") {
-            throw parse_stop{0, ""};
-        } else if (arg == "--width") o.width = int(integer(1, max_size));
-        else if (arg == "--spp") o.spp = int(integer(1, 1 << 24));
-        else if (arg == "--depth") o.depth = int(integer(1, 1 << 16));
-        else if (arg == "--threads") o.threads = int(integer(0, 1024));
-        else if (arg == "--seed") o.seed = uint64_t(integer(0, INT64_MAX));
-        else if (arg == "--adaptive") o.adaptive = detail::real_value(arg, next(), 0, 1e6);
-        else if (arg == "--caustic-paths") o.caustic_paths = detail::real_value(arg, next(), 0, 1024);
-        else if (arg == "--estimator") {
-            std::string v = next();
-            rt::path_estimator e;
-            if (!rt::parse_estimator(v, e)) stop_parsing("--estimator needs nee, bsdf or mixture, got '" + v + "'");
-            o.estimator = e;
-        } else if (arg == "--sampler") {
-            std::string v = next();
-            rt::sampler_kind k;
-            if (!rt::parse_sampler(v, k))
-                stop_parsing("--sampler needs sobol, stratified or independent, got '" + v + "'");
-            o.sampler = k;
-        } else if (arg == "--integrator" && d.xml_scenes) {
-            std::string v = next();
-            if (v != "path" && v != "whitted") stop_parsing("--integrator needs path or whitted, got '" + v + "'");
-            o.path_integrator = v == "path";
-        } else if (arg == "--samples" && d.slices) {
-            const std::string v = next();
-            const size_t colon = v.find(':');
-            if (colon == std::string::npos) stop_parsing("--samples needs A:B (samples A to B-1), got '" + v + "'");
-            const int a = int(detail::integer_value(arg + " (first)", v.substr(0, colon), 0, (1 << 24) - 1));
-            const int b = int(detail::integer_value(arg + " (end)", v.substr(colon + 1), 1, 1 << 24));
-            if (b <= a) stop_parsing("--samples A:B needs A < B (samples A to B-1), got '" + v + "'");
-            o.samples = std::make_pair(a, b);
-        } else if (arg == "--bfc" && d.xml_scenes) {
-            std::string v = next();
-            if (v != "on" && v != "off") stop_parsing("--bfc needs on or off, got '" + v + "'");
-            o.cull_back_faces = v == "on";
-        }
-        else if (arg == "-o" || arg == "--output") {
-            o.output = next();
-            if (o.output.empty()) stop_parsing("-o needs a file name");
-        } else if (arg == "--quiet" || arg == "-q") {
-            if (has_inline_value) stop_parsing("--quiet takes no value");
-            o.quiet = true;
-        } else if (arg.size() > 1 && arg[0] == '-') stop_parsing("unknown option '" + arg + "'");
-        else o.positional.push_back(arg);
-    }
-    if (o.positional.size() < d.min_positional || o.positional.size() > d.max_positional)
-        stop_parsing(d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
-                                           : std::string("expected ") + d.operands);
-    const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
-    if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator ||
-                                     o.sampler))
-        stop_parsing("--spp, --depth, --adaptive, --seed, --estimator and --sampler apply to XML scenes only with "
-                     "--integrator path, and --width never does (their files set the resolution)");
-    if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
-    if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");
-    if (!xml && o.path_integrator) stop_parsing("--integrator applies to XML scenes only (text scenes are path traced)");
-    if (!xml && o.cull_back_faces) stop_parsing("--bfc applies to XML scenes only");
-    if (o.samples) {
-        if (xml) stop_parsing("--samples applies to text scenes only");
-        if (o.adaptive.value_or(0) > 0)
-            stop_parsing("--samples and --adaptive do not go together (adaptive sampling decides the counts)");
-        if (rt::lowercase_extension(o.output) != ".pfm") stop_parsing("--samples writes a slice: -o must name a .pfm file");
-    }
-    if (!o.output.empty() && !xml && d.check_output) {
-        // Refuse a bad output path before rendering, not after.
-        try {
-            rt::check_output_path(o.output);
-        } catch (const rt::scene_error& e) {
-            throw parse_stop{1, e.what()};
-        }
-    }
-    return o;
-}
+options parse_arguments(int argc, char** argv, const description& d);
 
 // The command line read into options; on bad usage, an unwritable output path or --help, prints
 // what parse_stop says (above) and exits with its status.
-inline options parse(int argc, char** argv, const description& d) {
-    try {
-        return parse_arguments(argc, argv, d);
-    } catch (const parse_stop& stop) {
-        if (stop.status == 0) {
-            print_usage(d, stdout);
-            std::exit(0);
-        }
-        if (stop.status == 2) usage_error(d, stop.message);
-        std::fprintf(stderr, "%s: error: %s\n", d.name, stop.message.c_str());
-        std::exit(stop.status);
-    }
-}
+options parse(int argc, char** argv, const description& d);
 
 // Writes the image where the options say: -o FILE, or a P3 PPM on stdout.
-inline void write_output(const options& o, const rt::image& img) {
-    if (o.output.empty()) {
-        rt::write_ppm(std::cout, img);
-        std::cout.flush();
-        if (!std::cout) throw rt::scene_error("cannot write the image to standard output");
-    } else {
-        rt::write_image(o.output, img);
-    }
-}
+void write_output(const options& o, const rt::image& img);
 
 // Writes a render's image as write_output(o, img) does; if Ctrl-C stopped the render, then says
 // on stderr how far it got and how many samples the image holds (no image format carries the
 // note: PFM, for one, has no place for comments), and exits with status 130.
-inline void write_output(const options& o, const rt::render_result& r) {
-    render_over();
-    write_output(o, r.img);
-    if (!r.stats.interrupted) return;
-    const rt::render_stats& s = r.stats;
-    const std::string where = o.output.empty() ? "the image to standard output" : o.output;
-    std::string done;
-    char text[160];
-    if (!(o.adaptive.value_or(0) > 0)) { // adaptive sampling does not know its total ahead
-        std::snprintf(text, sizeof text, "after %d %% ", int(s.completed * 100));
-        done = text;
-    }
-    std::snprintf(text, sizeof text, "(average %.1f samples per pixel, %d to %d)", s.mean_pixel_samples(),
-                  s.min_pixel_samples, s.max_pixel_samples);
-    std::string note = done + text;
-    if (s.pixels_without_samples > 0)
-        note += "; " + std::to_string(s.pixels_without_samples) + " pixels took no sample and are black";
-    std::fprintf(stderr, "%s: interrupted %s; wrote %s with the samples taken\n", o.program.c_str(), note.c_str(),
-                 where.c_str());
-    std::fflush(nullptr);
-    std::exit(130);
-}
+void write_output(const options& o, const rt::render_result& r);
 
 // Runs an app's body, turning scene_error (and any other failure) into one error line.
 template <class Body>

@@ -22,6 +22,8 @@
 
 #include <rtweekend/camera.h>
 #include <rtweekend/render/path_tracer.h>
+#include <rtweekend/scene/compiled_scene.h>
+#include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/course/whitted.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/io/slice_file.h>

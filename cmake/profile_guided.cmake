@@ -1,6 +1,6 @@
 # Profile-guided optimisation of the apps' path tracer (-DRTWEEKEND_PGO=ON, GCC only).
 #
-# The path tracer the apps link (rtweekend_compiled_path_tracer, apps/path_tracer_once.cpp) holds
+# The path tracer the apps link (rtweekend_engine, rtweekend/engine.cpp) holds
 # every hot loop: the BVH walks, the shape and material kernels, the sampler. With PGO, g++ first
 # builds an instrumented copy of it (rtweekend_pgo_instrumented) and a driver (rtweekend_pgo_train,
 # the render app linked against that copy), renders small versions of the test scenes with it,
@@ -29,20 +29,20 @@ if(NOT RTWEEKEND_BUILD_APPS)
   return()
 endif()
 
-add_library(rtweekend_pgo_instrumented STATIC apps/path_tracer_once.cpp)
+add_library(rtweekend_pgo_instrumented STATIC rtweekend/engine.cpp)
 target_link_libraries(rtweekend_pgo_instrumented PUBLIC rtweekend PRIVATE rtweekend_project_flags)
-target_compile_definitions(rtweekend_pgo_instrumented INTERFACE RTWEEKEND_LINK_PATH_TRACER)
+target_compile_definitions(rtweekend_pgo_instrumented INTERFACE RTWEEKEND_LINK_ENGINE)
 target_compile_options(rtweekend_pgo_instrumented PRIVATE -fprofile-generate -fprofile-update=atomic)
 target_link_options(rtweekend_pgo_instrumented INTERFACE -fprofile-generate)
 
-add_executable(rtweekend_pgo_train apps/render.cpp)
+add_executable(rtweekend_pgo_train apps/render.cpp apps/app_options.cpp)
 target_link_libraries(rtweekend_pgo_train PRIVATE rtweekend_pgo_instrumented rtweekend rtweekend_project_flags)
 target_compile_definitions(rtweekend_pgo_train PRIVATE RTWEEKEND_TEXTURE_DIR="${PROJECT_SOURCE_DIR}/tests/data/textures")
 
 set(pgo_train_counts
-    ${PROJECT_BINARY_DIR}/CMakeFiles/rtweekend_pgo_instrumented.dir/apps/path_tracer_once.cpp.gcda)
+    ${PROJECT_BINARY_DIR}/CMakeFiles/rtweekend_pgo_instrumented.dir/rtweekend/engine.cpp.gcda)
 set(pgo_use_counts
-    ${PROJECT_BINARY_DIR}/CMakeFiles/rtweekend_compiled_path_tracer.dir/apps/path_tracer_once.cpp.gcda)
+    ${PROJECT_BINARY_DIR}/CMakeFiles/rtweekend_engine.dir/rtweekend/engine.cpp.gcda)
 set(pgo_out ${PROJECT_BINARY_DIR}/pgo_training)
 set(pgo_scenes ${PROJECT_SOURCE_DIR}/tests/data)
 # Small sizes: 3.6 s for all of them in the instrumented build on the Xeon of BENCHMARKS.md
@@ -74,8 +74,8 @@ add_custom_command(OUTPUT ${pgo_use_counts}
   COMMENT "PGO: training the path tracer on small renders of the test scenes"
   VERBATIM)
 add_custom_target(rtweekend_pgo_profile DEPENDS ${pgo_use_counts})
-add_dependencies(rtweekend_compiled_path_tracer rtweekend_pgo_profile)
+add_dependencies(rtweekend_engine rtweekend_pgo_profile)
 # Functions no training render reaches (other estimators, caustics of other kinds) keep the
 # ordinary optimisation (-fprofile-partial-training); g++ would name each of them in a warning.
-target_compile_options(rtweekend_compiled_path_tracer PRIVATE -fprofile-use -fprofile-partial-training -Wno-missing-profile)
+target_compile_options(rtweekend_engine PRIVATE -fprofile-use -fprofile-partial-training -Wno-missing-profile)
 message(STATUS "RTWEEKEND_PGO: the apps' path tracer is compiled with profile-guided optimisation")

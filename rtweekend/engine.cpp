@@ -1,11 +1,12 @@
-// The path tracer (rtweekend/render/path_tracer.h), compiled once for all of this project's own
-// programs: the apps and the unit tests link it (the CMake target rtweekend_compiled_path_tracer)
-// instead of each compiling it again. Those programs are built with RTWEEKEND_LINK_PATH_TRACER,
-// which leaves path_trace's definitions out of the header, so that it is declared there and
-// defined only here. It is the library's heaviest code to compile: a milestone app that includes
-// it compiles in about 23 s at -O3, one that links it in 6.5 s.
+// The engine compiled once, as the CMake target rtweekend::engine builds it: every entry point
+// declared RTWEEKEND_ENGINE_FUNCTION (path_trace, compile_scene, the Whitted renderer, the scene
+// and mesh readers, ...) with everything they stand on (the BVH, the kernels, the scheduler).
+// A program that links it is compiled with RTWEEKEND_LINK_ENGINE, which leaves those bodies out of
+// the headers (core/engine_linkage.h), so its own files compile their own code and nothing else:
+// with the headers precompiled, as rtweekend::engine sets up, an edited main rebuilds in seconds
+// (docs/benchmarks.md, "Compile times").
 //
-// Nothing changes for users: without the macro the header defines path_trace inline, as every
-// header-only function is.
-#define RTWEEKEND_PATH_TRACER_INLINE /* defined here, not inline */
-#include <rtweekend/render/path_tracer.h>
+// Nothing changes for a program that does not link it: without the macro every header defines its
+// functions inline, as a header-only library does.
+#define RTWEEKEND_ENGINE_TU
+#include "rtweekend.h"

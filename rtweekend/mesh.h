@@ -35,7 +35,7 @@ class triangle_mesh : public hittable {
     // Shade with the normals interpolated across each triangle (barycentrically) instead of the
     // flat geometric normal. Needs normals and face_normals (from the file, or
     // compute_vertex_normals()). Both renderers use them; the path tracer's rule for where they
-    // disagree with the triangles is in render/path_tracer.h (vertex_material).
+    // disagree with the triangles is in render/vertex_material.h.
     bool smooth_shading = false;
 
     // Gives every vertex the area-weighted mean of its faces' normals (each face's cross product,

@@ -14,6 +14,7 @@
 // The estimators' agreement with it on the Cornell box is in test_lights.cpp.
 
 #include <rtweekend/rtweekend.h>
+#include <rtweekend/render/caustic_paths.h>
 
 #include <doctest/doctest.h>
 

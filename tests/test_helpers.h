@@ -4,6 +4,7 @@
 
 #include <rtweekend/camera.h>
 #include <rtweekend/core/bsdf.h>
+#include <rtweekend/core/material_kinds.h>
 #include <rtweekend/image/image.h>
 #include <rtweekend/core/rng.h>
 #include <rtweekend/core/scene_error.h>

@@ -145,7 +145,7 @@ TEST_CASE("slice file: it is a PFM of the slice's mean, which read_image reads")
     }
     CHECK(img.pixels.pixel(2, 1).z() == doctest::Approx(std::ldexp(1.0, 31) / 8)); // the bound's mean
     // Bytes after a raster that are not a slice trailer are still refused, and a cut trailer magic too.
-    const std::string pfm = detail::encode_pfm(img.pixels);
+    const std::string pfm = encode_pfm(img.pixels);
     CHECK_THROWS_WITH_AS(decode_image(pfm + "\nsomething else", "x.pfm"), doctest::Contains("bytes after the raster"),
                          scene_error);
     CHECK_THROWS_WITH_AS(decode_image(pfm + "\nrtweekend-sli", "x.pfm"), doctest::Contains("bytes after the raster"),
@@ -256,7 +256,7 @@ TEST_CASE("slice file: a missing, truncated, damaged or foreign file is one erro
     check_refused(dir, "empty.pfm", "", "not a slice file");
     check_refused(dir, "text.pfm", "hello, world\n", "not a slice file");
     check_refused(dir, "png.pfm", "\x89PNG\r\n\x1a\n", "not a slice file");
-    check_refused(dir, "plain.pfm", detail::encode_pfm(image(3, 2)), "a PFM image without a slice trailer");
+    check_refused(dir, "plain.pfm", encode_pfm(image(3, 2)), "a PFM image without a slice trailer");
     // Cut anywhere: in the PFM header, in the raster, in the trailer's text, in the sums, in the checksum.
     for (size_t cut : {size_t(5), size_t(30), good.find("rtweekend-slice") + 3, good.find("\nseed") + 2,
                        good.find("\nsums ") + 20, good.size() - 5, good.size() - 1}) {
@@ -279,7 +279,7 @@ TEST_CASE("slice file: a missing, truncated, damaged or foreign file is one erro
     flipped[good.find("\nsums ") + 30] ^= 0x01;
     check_refused(dir, "flip2.pfm", flipped, "checksum mismatch");
     // Garbage after a real PFM header and raster, then the magic.
-    check_refused(dir, "garbage.pfm", detail::encode_pfm(image(3, 2)) + slice_trailer_magic + "1\n\x01\x02garbage",
+    check_refused(dir, "garbage.pfm", encode_pfm(image(3, 2)) + slice_trailer_magic + "1\n\x01\x02garbage",
                   "checksum line");
     // Fields that are wrong, with a correct checksum: only the reader's own checks stand.
     check_refused(dir, "version.pfm", [&] {

@@ -1,4 +1,4 @@
-// Smooth shading in the path tracer (render/path_tracer.h, vertex_material): a direction below
+// Smooth shading in the path tracer (render/vertex_material.h): a direction below
 // the triangle is mirrored back above it, so a material under tilted shading normals reflects
 // exactly what it reflects without them, and no facet turns black.
 #include <doctest/doctest.h>
@@ -7,6 +7,7 @@
 
 #include <rtweekend/camera.h>
 #include <rtweekend/render/path_tracer.h>
+#include <rtweekend/render/vertex_material.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>

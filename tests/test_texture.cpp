@@ -20,6 +20,18 @@
 
 #include <doctest/doctest.h>
 
+// stb's writer for the Radiance HDR files these tests read (the library writes no HDR files, and
+// a program that links the engine has none of stb's code in its own files).
+#ifndef INCLUDE_STB_IMAGE_WRITE_H
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#if __has_include(<stb_image_write.h>)
+#include <stb_image_write.h>
+#else
+#include <stb/stb_image_write.h>
+#endif
+#endif
+
 #include "test_helpers.h"
 
 #include <cmath>

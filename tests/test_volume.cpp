@@ -12,6 +12,7 @@
 #include <rtweekend/camera.h>
 #include <rtweekend/constant_medium.h>
 #include <rtweekend/core/rng.h>
+#include <rtweekend/scene/material_compiler.h>
 #include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/hittable_list.h>
 #include <rtweekend/material.h>

@@ -17,6 +17,7 @@
 //
 // All throw scene_error.
 
+#include "engine_linkage.h"
 #include "scene_error.h"
 #include "input_limits.h"
 
@@ -35,12 +36,15 @@
 
 namespace rt {
 
-std::string read_file(const std::string& path, const std::string& what, uint64_t max_bytes = max_input_file_bytes);
-void write_file_atomically(const std::string& path, const std::string& contents);
-void check_writable(const std::string& path);
-std::string lowercase_extension(const std::string& path);
+RTWEEKEND_ENGINE_FUNCTION std::string read_file(const std::string& path, const std::string& what,
+                                                uint64_t max_bytes = max_input_file_bytes);
+RTWEEKEND_ENGINE_FUNCTION void write_file_atomically(const std::string& path, const std::string& contents);
+RTWEEKEND_ENGINE_FUNCTION void check_writable(const std::string& path);
+RTWEEKEND_ENGINE_FUNCTION std::string lowercase_extension(const std::string& path);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
 
 namespace detail {
 
@@ -68,7 +72,8 @@ inline std::string file_kind_text(std::filesystem::file_type type) {
 
 } // namespace detail
 
-inline std::string read_file(const std::string& path, const std::string& what, uint64_t max_bytes) {
+RTWEEKEND_ENGINE_FUNCTION std::string read_file(const std::string& path, const std::string& what,
+                                                uint64_t max_bytes) {
     namespace fs = std::filesystem;
     // The kind of file first: opening a FIFO would block, and reading /dev/zero or a directory
     // never ends or fails late with a vague message. A missing file falls through to fopen, whose
@@ -107,7 +112,7 @@ inline std::string read_file(const std::string& path, const std::string& what, u
     return bytes;
 }
 
-inline void write_file_atomically(const std::string& path, const std::string& contents) {
+RTWEEKEND_ENGINE_FUNCTION void write_file_atomically(const std::string& path, const std::string& contents) {
     std::string tmp = detail::temporary_name(path);
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw scene_error("cannot write '" + path + "': " + detail::errno_text(errno));
@@ -125,7 +130,7 @@ inline void write_file_atomically(const std::string& path, const std::string& co
     }
 }
 
-inline void check_writable(const std::string& path) {
+RTWEEKEND_ENGINE_FUNCTION void check_writable(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw scene_error("cannot write '" + path + "': it is a directory");
     // Create and remove a file beside the target: the same test the atomic write will face.
@@ -136,7 +141,7 @@ inline void check_writable(const std::string& path) {
     std::remove(probe.c_str());
 }
 
-inline std::string lowercase_extension(const std::string& path) {
+RTWEEKEND_ENGINE_FUNCTION std::string lowercase_extension(const std::string& path) {
     auto slash = path.find_last_of("/\\");
     auto dot = path.find_last_of('.');
     if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
@@ -144,5 +149,7 @@ inline std::string lowercase_extension(const std::string& path) {
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     return ext;
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt

@@ -78,6 +78,30 @@ struct tuple_of<kind_list<Kinds...>> {
 };
 } // namespace detail
 
+namespace detail {
+template <class A, class B>
+struct concat_kinds;
+template <class... As, class... Bs>
+struct concat_kinds<kind_list<As...>, kind_list<Bs...>> {
+    using type = kind_list<As..., Bs...>;
+};
+template <template <class> class Pred, class List>
+struct filter_kinds;
+template <template <class> class Pred>
+struct filter_kinds<Pred, kind_list<>> {
+    using type = kind_list<>;
+};
+template <template <class> class Pred, class K, class... Ks>
+struct filter_kinds<Pred, kind_list<K, Ks...>> {
+    using rest = typename filter_kinds<Pred, kind_list<Ks...>>::type;
+    using type = std::conditional_t<Pred<K>::value, typename concat_kinds<kind_list<K>, rest>::type, rest>;
+};
+} // namespace detail
+
+// The kinds K of List for which Pred<K>::value is true, in order.
+template <template <class> class Pred, class List>
+using kinds_where = typename detail::filter_kinds<Pred, List>::type;
+
 // The number of Kind in List (a compile error when it is not there).
 template <class Kind, class List>
 inline constexpr uint8_t kind_index = uint8_t(detail::kind_index_of<Kind, List>::value);

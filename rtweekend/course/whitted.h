@@ -51,29 +51,23 @@
 // camera ray and its tree), so a render stops within one pixel; the pixels not reached are black
 // (radiance 0), and render_stats says how many there are (interrupted, pixels_without_samples).
 
-#include "../image/image_write.h"
-#include "../core/input_limits.h"
-#include "../whitted_material.h"
-#include "whitted_scene.h"
+#include "../core/engine_linkage.h"
 #include "../core/material_kinds.h"
-#include "../scene/compiled_scene.h"
-#include "../core/ray_offset.h"
-#include "../render/render_settings.h"
 #include "../core/rng.h"
-#include "../scene/scene_compiler.h"
+#include "../image/image.h"
+#include "../render/render_settings.h"
 #include "../render/scheduler.h"
-#include "../scene/surface_coordinates.h"
-#include "../scene/validate.h"
+#include "../scene/surface_hit.h"
+#include "whitted_scene.h"
 
-#include <atomic>
-#include <chrono>
-#include <cmath>
-#include <limits>
-#include <optional>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace rt {
+
+class compiled_scene;
 
 // Settings (render_settings, render/render_settings.h): the integrator takes one sample through
 // the centre of each pixel; it reads threads, quiet, stop, share and keep_sums, and its own:
@@ -122,7 +116,7 @@ class whitted_renderer {
         return s;
     }
     whitted_render render(size_t camera_index, const render_settings& settings = defaults()) const;
-    const compiled_scene& compiled() const { return compiled_; }
+    const compiled_scene& compiled() const { return *compiled_; }
 
   private:
     // A delta lobe's ray, waiting to be traced.
@@ -159,7 +153,7 @@ class whitted_renderer {
     vec3f background_, ambient_light_;
     float shadow_ray_epsilon_ = 0;
     int max_recursion_depth_ = 0;
-    compiled_scene compiled_;
+    std::shared_ptr<const compiled_scene> compiled_; // shared by the renderer's copies
     std::vector<whitted_terms> terms_; // by compiled material index
     struct light_f {
         vec3f position; // relative to the compiled scene's origin
@@ -169,19 +163,40 @@ class whitted_renderer {
 };
 
 // Renders camera `camera_index` of the scene.
-whitted_render render_whitted(const whitted_scene& scene, size_t camera_index,
-                              const render_settings& settings = whitted_renderer::defaults());
+RTWEEKEND_ENGINE_FUNCTION whitted_render render_whitted(const whitted_scene& scene, size_t camera_index,
+                                                        const render_settings& settings = whitted_renderer::defaults());
 
 // The course's 8-bit encoding: each channel clamped to [0, 255] and truncated (NaN gives 0).
-std::vector<unsigned char> encode_whitted_8bit(const image& img);
+RTWEEKEND_ENGINE_FUNCTION std::vector<unsigned char> encode_whitted_8bit(const image& img);
 
 // Writes the image as .png or .ppm (P3) in that encoding, or .pfm or .exr with the raw radiance;
 // atomically.
-void write_whitted_image(const std::string& path, const image& img);
+RTWEEKEND_ENGINE_FUNCTION void write_whitted_image(const std::string& path, const image& img);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
 
-inline whitted_terms whitted_terms::of(const compiled_material& m) {
+} // namespace rt
+
+#include "../core/input_limits.h"
+#include "../core/ray_offset.h"
+#include "../image/image_write.h"
+#include "../scene/compiled_scene.h"
+#include "../scene/scene_compiler.h"
+#include "../scene/surface_coordinates.h"
+#include "../scene/validate.h"
+#include "../whitted_material.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace rt {
+
+RTWEEKEND_ENGINE_FUNCTION whitted_terms whitted_terms::of(const compiled_material& m) {
     if (m.is_user())
         throw scene_error("the Whitted integrator cannot shade a user-written material (it has only scatter()): "
                           "use whitted_material or a built-in material");
@@ -194,9 +209,10 @@ inline whitted_terms whitted_terms::of(const compiled_material& m) {
     return t;
 }
 
-inline whitted_renderer::whitted_renderer(const whitted_scene& scene)
-    : cameras_(scene.cameras),
-      compiled_(compile_scene(scene.world, scene.cameras.empty() ? point3(0, 0, 0) : scene.cameras[0].position)) {
+RTWEEKEND_ENGINE_FUNCTION whitted_renderer::whitted_renderer(const whitted_scene& scene)
+    : cameras_(scene.cameras) {
+    auto compiled = std::make_shared<compiled_scene>(
+        compile_scene(scene.world, scene.cameras.empty() ? point3(0, 0, 0) : scene.cameras[0].position));
     if (!std::isfinite(scene.shadow_ray_epsilon) || scene.shadow_ray_epsilon < 0)
         throw scene_error("shadow ray epsilon must be finite and non-negative");
     if (scene.max_recursion_depth < 0) throw scene_error("max recursion depth must be non-negative");
@@ -208,21 +224,23 @@ inline whitted_renderer::whitted_renderer(const whitted_scene& scene)
     max_recursion_depth_ = scene.max_recursion_depth;
     // The course's specular term is point-light shading here (whitted_terms), not the path
     // tracer's glossy lobe: a course material is shaded through its Lambertian base alone.
-    for (compiled_material& m : compiled_.materials)
+    for (compiled_material& m : compiled->materials)
         if (auto* w = dynamic_cast<const whitted_material*>(m.source)) m = w->compiled(false);
-    for (const compiled_material& m : compiled_.materials) terms_.push_back(whitted_terms::of(m));
+    for (const compiled_material& m : compiled->materials) terms_.push_back(whitted_terms::of(m));
     for (const point_light& l : scene.lights) {
         if (!finite3(l.position)) throw scene_error("point light position must be finite");
         check_color(l.intensity, "point light intensity");
-        lights_.push_back({vec3f(l.position - compiled_.origin), vec3f(l.intensity)});
+        lights_.push_back({vec3f(l.position - compiled->origin), vec3f(l.intensity)});
     }
     // Back faces the culled walk skips (whitted_settings::cull_back_faces asks for it per render).
-    compiled_.set_back_face_culling([&](uint32_t m) { return !compiled_.materials[m].transmits(); });
+    compiled->set_back_face_culling([&](uint32_t m) { return !compiled->materials[m].transmits(); });
+    compiled_ = std::move(compiled);
 }
 
 // A secondary ray from the hit point, offset by the shadow-ray epsilon (and the float error of
 // the hit point) to the side `side` of the surface.
-inline ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const {
+RTWEEKEND_ENGINE_FUNCTION ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side,
+                                                        const vec3f& dir) const {
     ray3f r;
     r.origin = offset_ray_origin(hit.p, side) + (hit.offset + shadow_ray_epsilon_) * side;
     r.dir = dir;
@@ -234,8 +252,9 @@ inline ray3f whitted_renderer::spawn(const surface_hit& hit, const vec3f& side, 
 
 // Ambient, plus what every point light the point sees adds: the material's eval towards the
 // light and the course's Blinn-Phong specular term.
-inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, const compiled_material& m,
-                                     const whitted_terms& terms, uint64_t& rays) const {
+RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r,
+                                                        const compiled_material& m, const whitted_terms& terms,
+                                                        uint64_t& rays) const {
     vec3f L = terms.ambient * ambient_light_;
     if (lights_.empty()) return L;
     const vec3f n = hit.shading_normal, v = -r.dir;
@@ -252,7 +271,7 @@ inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, con
         shadow.tmax = length(to_light_from_origin);
         shadow.dir = to_light_from_origin / shadow.tmax;
         ++rays;
-        if (compiled_.occluded(shadow)) continue;
+        if (compiled_->occluded(shadow)) continue;
         vec3f E = light.intensity / d2; // irradiance at distance d: I / d^2
         vec3f h = normalize(l + v);
         float specular = std::pow(fmax_inline(0.0f, dot(n, h)), terms.phong_exponent);
@@ -261,14 +280,15 @@ inline vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r, con
     return L;
 }
 
-inline bool whitted_renderer::intersect(const ray3f& r, surface_hit& hit, const whitted_settings& w) const {
-    return w.cull_back_faces ? compiled_.intersect_culling_back_faces(r, hit) : compiled_.intersect(r, hit);
+RTWEEKEND_ENGINE_FUNCTION bool whitted_renderer::intersect(const ray3f& r, surface_hit& hit,
+                                                           const whitted_settings& w) const {
+    return w.cull_back_faces ? compiled_->intersect_culling_back_faces(r, hit) : compiled_->intersect(r, hit);
 }
 
 // What leaves the hit point towards the ray's origin, without the delta lobes: local shading,
 // and the lobes (mirror, conductor, glass) to follow while bounces remain.
-inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays,
-                                   frame& f, const whitted_settings& w) const {
+RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng,
+                                                      uint64_t& rays, frame& f, const whitted_settings& w) const {
     // A user-written hittable reports its own material; built-in shapes index the table.
     std::optional<compiled_material> reported;
     std::optional<whitted_terms> reported_terms;
@@ -276,10 +296,10 @@ inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int d
         reported = compile_reported_material(hit.user_record);
         reported_terms = whitted_terms::of(*reported);
     }
-    const compiled_material& stored = hit.user_shape ? *reported : compiled_.materials[hit.material];
+    const compiled_material& stored = hit.user_shape ? *reported : compiled_->materials[hit.material];
     // A textured lambertian or light: its colour at this hit.
     std::optional<compiled_material> looked_up;
-    if (stored.texture != no_texture) looked_up = textured(compiled_, stored, hit);
+    if (stored.texture != no_texture) looked_up = textured(*compiled_, stored, hit);
     const compiled_material& m = looked_up ? *looked_up : stored;
     const whitted_terms& terms = hit.user_shape ? *reported_terms : terms_[hit.material];
     // The course's rule for glass seen from inside (whitted_settings::shade_inside_dielectrics):
@@ -315,7 +335,8 @@ inline void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int d
 // The radiance arriving along a camera ray: the recursion L(hit) = shade + sum over lobes of
 // weight x L(next hit), attenuated by Beer's law inside absorbing glass, evaluated depth first
 // with an explicit stack of frames (stack[i] is the surface at depth i).
-inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays, const whitted_settings& w) const {
+RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays,
+                                                        const whitted_settings& w) const {
     ++rays;
     surface_hit hit;
     if (!intersect(r, hit, w)) return background_;
@@ -360,7 +381,8 @@ inline vec3f whitted_renderer::trace(const ray3f& r, pcg32& rng, uint64_t& rays,
     }
 }
 
-inline whitted_render whitted_renderer::render(size_t camera_index, const render_settings& given) const {
+RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_index,
+                                                                  const render_settings& given) const {
     auto start = std::chrono::steady_clock::now();
     render_settings settings = given; // one ray through the centre of each pixel
     settings.samples_per_pixel = 1;
@@ -389,7 +411,7 @@ inline whitted_render whitted_renderer::render(size_t camera_index, const render
     // Pixel (i, j), j = 0 the top row: s = e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v.
     const vec3 corner = -c.near_distance * w + c.left * u + c.top * v; // relative to e
     const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;
-    const vec3f eye(c.position - compiled_.origin);
+    const vec3f eye(c.position - compiled_->origin);
 
     const whitted_settings& ws = settings.whitted;
     render_result out = render_samples(
@@ -407,11 +429,12 @@ inline whitted_render whitted_renderer::render(size_t camera_index, const render
     return {std::move(out.img), out.stats, std::move(out.sums)};
 }
 
-inline whitted_render render_whitted(const whitted_scene& scene, size_t camera_index, const render_settings& settings) {
+RTWEEKEND_ENGINE_FUNCTION whitted_render render_whitted(const whitted_scene& scene, size_t camera_index,
+                                                        const render_settings& settings) {
     return whitted_renderer(scene).render(camera_index, settings);
 }
 
-inline std::vector<unsigned char> encode_whitted_8bit(const image& img) {
+RTWEEKEND_ENGINE_FUNCTION std::vector<unsigned char> encode_whitted_8bit(const image& img) {
     std::vector<unsigned char> bytes(img.data().size());
     for (size_t i = 0; i < bytes.size(); ++i) {
         float value = img.data()[i];
@@ -420,14 +443,16 @@ inline std::vector<unsigned char> encode_whitted_8bit(const image& img) {
     return bytes;
 }
 
-inline void write_whitted_image(const std::string& path, const image& img) {
+RTWEEKEND_ENGINE_FUNCTION void write_whitted_image(const std::string& path, const image& img) {
     if (img.empty()) throw scene_error("cannot write '" + path + "': the image is empty");
     const std::string ext = detail::image_format(path);
-    std::string contents = ext == ".pfm"   ? detail::encode_pfm(img)
+    std::string contents = ext == ".pfm"   ? encode_pfm(img)
                            : ext == ".exr" ? encode_exr(img, path)
                                            : encode_8bit_image(path, img.width(), img.height(), encode_whitted_8bit(img));
     write_file_atomically(path, contents);
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt
 

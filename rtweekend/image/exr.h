@@ -31,11 +31,33 @@
 //
 // Errors are scene_error: "cannot write 'NAME': ..." and "cannot read 'NAME': EXR ...".
 
+#include "../core/engine_linkage.h"
 #include "image.h"
 #include "../core/scene_error.h"
 #include "../core/input_limits.h"
 
 #include <string>
+
+namespace rt {
+
+#if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
+inline constexpr bool exr_supported = true;
+#else
+inline constexpr bool exr_supported = false;
+#endif
+
+inline const char* exr_not_built_text() {
+    return "EXR support was not built: install libopenexr-dev and reconfigure with CMake";
+}
+
+RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image& img, const std::string& name);
+RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string& bytes, const std::string& name);
+
+} // namespace rt
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
 
 #if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>
@@ -55,28 +77,13 @@
 
 namespace rt {
 
-#if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
-inline constexpr bool exr_supported = true;
-#else
-inline constexpr bool exr_supported = false;
-#endif
-
-inline const char* exr_not_built_text() {
-    return "EXR support was not built: install libopenexr-dev and reconfigure with CMake";
-}
-
-std::string encode_exr(const image& img, const std::string& name);
-image decode_exr(const std::string& bytes, const std::string& name);
-
-// --- IMPLEMENTATION -----------------------------------------------------------------------------
-
 #if !(defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR)
 
-inline std::string encode_exr(const image&, const std::string& name) {
+RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image&, const std::string& name) {
     throw scene_error("cannot write '" + name + "': " + exr_not_built_text());
 }
 
-inline image decode_exr(const std::string&, const std::string& name) {
+RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string&, const std::string& name) {
     throw scene_error("cannot read '" + name + "': " + exr_not_built_text());
 }
 
@@ -257,7 +264,7 @@ inline uint64_t exr_best_ratio(exr_compression_t compression) {
 
 } // namespace detail
 
-inline std::string encode_exr(const image& img, const std::string& name) {
+RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image& img, const std::string& name) {
     if (img.empty()) throw scene_error("cannot write '" + name + "': the image is empty");
     try {
         Imf::Header header(img.width(), img.height(), 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
@@ -286,7 +293,7 @@ inline std::string encode_exr(const image& img, const std::string& name) {
     }
 }
 
-inline image decode_exr(const std::string& bytes, const std::string& name) {
+RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string& bytes, const std::string& name) {
     detail::exr_core_reader exr(bytes, name);
     const detail::exr_layout layout = detail::check_exr_header(exr);
     exr_context_t ctxt = exr.context();
@@ -388,3 +395,5 @@ inline image decode_exr(const std::string& bytes, const std::string& name) {
 #endif
 
 } // namespace rt
+
+#endif // RTWEEKEND_ENGINE_BODIES

@@ -13,6 +13,7 @@
 // Reading files back is image_read.h's job (kept apart so that this header needs no decoder).
 // Atomic writing and the output-path check are core/file.h's.
 
+#include "../core/engine_linkage.h"
 #include "../color.h"
 #include "image.h"
 #include "../core/scene_error.h"
@@ -26,6 +27,35 @@
 #include <ostream>
 #include <string>
 #include <vector>
+
+namespace rt {
+
+// The image encoded the book's way: gamma 2, int(256 * clamp(x, 0, 0.999)), RGB bytes.
+RTWEEKEND_ENGINE_FUNCTION std::vector<unsigned char> encode_8bit(const image& img);
+// P3 PPM text of 8-bit RGB bytes: "P3\n<w> <h>\n255\n" then one "r g b" line per pixel, rows top
+// to bottom.
+RTWEEKEND_ENGINE_FUNCTION std::string ppm_text(int width, int height, const std::vector<unsigned char>& bytes);
+// The image as P3 PPM, encoded the book's way: byte for byte what the book's code prints.
+RTWEEKEND_ENGINE_FUNCTION void write_ppm(std::ostream& out, const image& img);
+// PFM: "PF\n<w> <h>\n-1.0\n" (negative scale = little-endian), float RGB rows bottom to top.
+RTWEEKEND_ENGINE_FUNCTION std::string encode_pfm(const image& img);
+// The file contents of 8-bit RGB bytes (rows top to bottom) for `path`'s extension: .ppm (P3),
+// .png or .bmp. Throws scene_error for other extensions.
+RTWEEKEND_ENGINE_FUNCTION std::string encode_8bit_image(const std::string& path, int width, int height,
+                                                        const std::vector<unsigned char>& bytes);
+// The file contents write_image would write for `path`'s extension.
+RTWEEKEND_ENGINE_FUNCTION std::string encode_image(const std::string& path, const image& img);
+RTWEEKEND_ENGINE_FUNCTION void write_image(const std::string& path, const image& img);
+// Throws scene_error now if write_image(path, ...) would fail for want of a known format or a
+// writable directory, so a program can refuse before a long render rather than after it. It
+// creates and removes a temporary file beside `path`; `path` itself is not touched.
+RTWEEKEND_ENGINE_FUNCTION void check_output_path(const std::string& path);
+
+} // namespace rt
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -51,17 +81,14 @@
 
 namespace rt {
 
-// The image encoded the book's way: gamma 2, int(256 * clamp(x, 0, 0.999)), RGB bytes.
-inline std::vector<unsigned char> encode_8bit(const image& img) {
+RTWEEKEND_ENGINE_FUNCTION std::vector<unsigned char> encode_8bit(const image& img) {
     std::vector<unsigned char> bytes(img.data().size());
     std::transform(img.data().begin(), img.data().end(), bytes.begin(),
                    [](float v) { return static_cast<unsigned char>(encode_byte(v)); });
     return bytes;
 }
 
-// P3 PPM text of 8-bit RGB bytes: "P3\n<w> <h>\n255\n" then one "r g b" line per pixel, rows top
-// to bottom.
-inline std::string ppm_text(int width, int height, const std::vector<unsigned char>& bytes) {
+RTWEEKEND_ENGINE_FUNCTION std::string ppm_text(int width, int height, const std::vector<unsigned char>& bytes) {
     std::string text = "P3\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
     // The decimal digits of every byte value, written by table: snprintf per pixel was a twentieth
     // of the whole cover render (400x225, 10 spp) on one core.
@@ -88,18 +115,11 @@ inline std::string ppm_text(int width, int height, const std::vector<unsigned ch
     return text;
 }
 
-// The image as P3 PPM, encoded the book's way: byte for byte what the book's code prints.
-inline void write_ppm(std::ostream& out, const image& img) { out << ppm_text(img.width(), img.height(), encode_8bit(img)); }
-
-namespace detail {
-
-inline void append_bytes(void* context, void* data, int size) {
-    auto* out = static_cast<std::string*>(context);
-    out->append(static_cast<const char*>(data), size_t(size));
+RTWEEKEND_ENGINE_FUNCTION void write_ppm(std::ostream& out, const image& img) {
+    out << ppm_text(img.width(), img.height(), encode_8bit(img));
 }
 
-// PFM: "PF\n<w> <h>\n-1.0\n" (negative scale = little-endian), float RGB rows bottom to top.
-inline std::string encode_pfm(const image& img) {
+RTWEEKEND_ENGINE_FUNCTION std::string encode_pfm(const image& img) {
     std::string out = "PF\n" + std::to_string(img.width()) + " " + std::to_string(img.height()) + "\n-1.0\n";
     size_t row_floats = size_t(img.width()) * 3;
     for (int y = img.height() - 1; y >= 0; --y) {
@@ -112,6 +132,13 @@ inline std::string encode_pfm(const image& img) {
         }
     }
     return out;
+}
+
+namespace detail {
+
+inline void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::string*>(context);
+    out->append(static_cast<const char*>(data), size_t(size));
 }
 
 // The extension of `path` if write_image knows it; throws scene_error otherwise.
@@ -127,9 +154,7 @@ inline std::string image_format(const std::string& path) {
 
 } // namespace detail
 
-// The file contents of 8-bit RGB bytes (rows top to bottom) for `path`'s extension: .ppm (P3),
-// .png or .bmp. Throws scene_error for other extensions.
-inline std::string encode_8bit_image(const std::string& path, int width, int height,
+RTWEEKEND_ENGINE_FUNCTION std::string encode_8bit_image(const std::string& path, int width, int height,
                                      const std::vector<unsigned char>& bytes) {
     std::string ext = detail::image_format(path);
     if (width <= 0 || height <= 0 || bytes.size() != size_t(width) * size_t(height) * 3)
@@ -144,27 +169,25 @@ inline std::string encode_8bit_image(const std::string& path, int width, int hei
     return out;
 }
 
-// The file contents write_image would write for `path`'s extension.
-inline std::string encode_image(const std::string& path, const image& img) {
+RTWEEKEND_ENGINE_FUNCTION std::string encode_image(const std::string& path, const image& img) {
     if (img.empty())
         throw scene_error("cannot write '" + path + "': the image is empty (" + std::to_string(img.width()) + "x" +
                           std::to_string(img.height()) + ")");
     const std::string ext = detail::image_format(path);
-    if (ext == ".pfm") return detail::encode_pfm(img);
+    if (ext == ".pfm") return encode_pfm(img);
     if (ext == ".exr") return encode_exr(img, path);
     return encode_8bit_image(path, img.width(), img.height(), encode_8bit(img));
 }
 
-inline void write_image(const std::string& path, const image& img) {
+RTWEEKEND_ENGINE_FUNCTION void write_image(const std::string& path, const image& img) {
     write_file_atomically(path, encode_image(path, img));
 }
 
-// Throws scene_error now if write_image(path, ...) would fail for want of a known format or a
-// writable directory, so a program can refuse before a long render rather than after it. It
-// creates and removes a temporary file beside `path`; `path` itself is not touched.
-inline void check_output_path(const std::string& path) {
+RTWEEKEND_ENGINE_FUNCTION void check_output_path(const std::string& path) {
     detail::image_format(path);
     check_writable(path);
 }
 
 } // namespace rt
+
+#endif // RTWEEKEND_ENGINE_BODIES

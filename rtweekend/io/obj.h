@@ -9,11 +9,9 @@
 // coordinates are kept; materials named in the file (mtllib/usemtl) are ignored: the mesh gets
 // the material it is given.
 
+#include "../core/engine_linkage.h"
 #include "../mesh.h"
 #include "../core/scene_error.h"
-#include "../core/file.h"
-#include "../core/input_limits.h"
-#include "../core/text_lines.h"
 
 #include <algorithm>
 #include <array>
@@ -30,8 +28,6 @@
 #include <utility>
 #include <vector>
 
-#include <tiny_obj_loader.h>
-
 namespace rt {
 
 class material;
@@ -40,12 +36,25 @@ class material;
 // missing or unreadable file, a number that is not a finite number (within float's range), a face
 // with fewer than three corners or more than 1024, an index out of range, a NUL byte, or a file
 // without faces (detail::check_obj_text lists every check).
-std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat);
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> load_obj(const std::string& path,
+                                                                  std::shared_ptr<material> mat);
 
 // load_obj on a file's text already in memory; `path` names it in messages.
-std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path, std::shared_ptr<material> mat);
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
+                                                                    std::shared_ptr<material> mat);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
+
+} // namespace rt
+
+#include "../core/file.h"
+#include "../core/input_limits.h"
+#include "../core/text_lines.h"
+#include <tiny_obj_loader.h>
+
+namespace rt {
 
 namespace detail {
 
@@ -190,12 +199,13 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
 
 } // namespace detail
 
-inline std::shared_ptr<triangle_mesh> load_obj(const std::string& path, std::shared_ptr<material> mat) {
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> load_obj(const std::string& path,
+                                                                  std::shared_ptr<material> mat) {
     return decode_obj(read_file(path, "OBJ file"), path, std::move(mat));
 }
 
-inline std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
-                                                 std::shared_ptr<material> mat) {
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
+                                                                    std::shared_ptr<material> mat) {
     detail::check_obj_text(text, path);
 
     tinyobj::ObjReaderConfig config;
@@ -261,6 +271,8 @@ inline std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const 
     if (!any_uvs) mesh->face_uvs.clear();
     return mesh;
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt
 

@@ -28,10 +28,9 @@
 // temporary file renamed into place. A value a float cannot hold (1e300, NaN) is refused rather
 // than written as inf or nan.
 
+#include "../core/engine_linkage.h"
 #include "../mesh.h"
 #include "../core/scene_error.h"
-#include "../core/file.h"
-#include "../core/text_lines.h"
 
 #include <array>
 #include <charconv>
@@ -51,16 +50,28 @@ namespace rt {
 
 // Reads a PLY file into a mesh with material `mat`. Throws scene_error "path: problem" (with the
 // line for ASCII data: "path:LINE: problem").
-std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::shared_ptr<material> mat);
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> load_ply(const std::string& path,
+                                                                  std::shared_ptr<material> mat);
 
 // load_ply on a file's bytes already in memory; `path` names it in messages.
-std::shared_ptr<triangle_mesh> decode_ply(const std::string& bytes, const std::string& path, std::shared_ptr<material> mat);
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_ply(const std::string& bytes,
+                                                                    const std::string& path,
+                                                                    std::shared_ptr<material> mat);
 
 // Writes `mesh` as PLY (binary little-endian or ASCII). Throws scene_error naming the path when
 // it cannot be written or a face uses a vertex the mesh does not have.
-void write_ply(const std::string& path, const triangle_mesh& mesh, bool binary);
+RTWEEKEND_ENGINE_FUNCTION void write_ply(const std::string& path, const triangle_mesh& mesh, bool binary);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
+
+} // namespace rt
+
+#include "../core/file.h"
+#include "../core/text_lines.h"
+
+namespace rt {
 
 namespace detail {
 
@@ -311,12 +322,13 @@ class ply_data {
 
 } // namespace detail
 
-inline std::shared_ptr<triangle_mesh> load_ply(const std::string& path, std::shared_ptr<material> mat) {
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> load_ply(const std::string& path,
+                                                                  std::shared_ptr<material> mat) {
     return decode_ply(read_file(path, "PLY file"), path, std::move(mat));
 }
 
-inline std::shared_ptr<triangle_mesh> decode_ply(const std::string& text, const std::string& path,
-                                                 std::shared_ptr<material> mat) {
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_ply(const std::string& text, const std::string& path,
+                                                                    std::shared_ptr<material> mat) {
     using detail::ply_element;
     using detail::ply_property;
     using detail::ply_type;
@@ -515,7 +527,7 @@ inline std::shared_ptr<triangle_mesh> decode_ply(const std::string& text, const 
     return mesh;
 }
 
-inline void write_ply(const std::string& path, const triangle_mesh& mesh, bool binary) {
+RTWEEKEND_ENGINE_FUNCTION void write_ply(const std::string& path, const triangle_mesh& mesh, bool binary) {
     const uint32_t none = triangle_mesh::no_index;
     const size_t n_faces = mesh.faces.size();
     auto corner_has = [&](const std::vector<std::array<uint32_t, 3>>& per_corner, size_t size) {
@@ -622,6 +634,8 @@ inline void write_ply(const std::string& path, const triangle_mesh& mesh, bool b
     }
     write_file_atomically(path, out);
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt
 

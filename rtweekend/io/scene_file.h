@@ -57,21 +57,11 @@
 //   rotate ax ay az degrees      about the axis (ax, ay, az), as rotate(object, axis, degrees)
 //   scale sx sy sz               per axis, as scale(object, factors); non-zero factors
 
+#include "../core/engine_linkage.h"
 #include "../camera.h"
-#include "../constant_medium.h"
 #include "../hittable_list.h"
-#include "../material.h"
-#include "../mesh.h"
 #include "../point_light.h"
-#include "../quad.h"
 #include "../core/scene_error.h"
-#include "../sphere.h"
-#include "../texture.h"
-#include "../transform.h"
-#include "../triangle.h"
-#include "../core/input_limits.h"
-#include "obj.h"
-#include "ply.h"
 
 #include <algorithm>
 #include <cctype>
@@ -102,24 +92,42 @@ struct scene_description {
 // Reads a scene from a stream; `name` is the file name used in error messages. Text without a
 // directive (nothing, or only comments and blank lines) is refused: "<name>: scene file is empty
 // (no directives)", as load_scene refuses an empty file.
-scene_description parse_scene(std::istream& in, const std::string& name);
+RTWEEKEND_ENGINE_FUNCTION scene_description parse_scene(std::istream& in, const std::string& name);
 
 // Throws scene_error unless the image `cam` would render is within max_image_pixels
 // (core/input_limits.h): "the image is WxH = N pixels, more than the limit of ...". A side beyond
 // 65536 pixels, or an aspect ratio that is not positive, is left to the camera's own check.
-void check_camera_image_size(const camera& cam);
+RTWEEKEND_ENGINE_FUNCTION void check_camera_image_size(const camera& cam);
 
 // Reads a scene file. Besides parse_scene's checks (an empty file, or one of only comments, is
 // refused there), refuses a file that places no object in the world: it would render nothing but
 // the sky. And refuses an image larger than max_image_pixels (core/input_limits.h), before anything
 // is allocated.
-scene_description load_scene(const std::string& path);
+RTWEEKEND_ENGINE_FUNCTION scene_description load_scene(const std::string& path);
 
 // load_scene on a file's text already in memory: `path` names it in messages, and relative mesh
 // and texture paths are relative to its folder.
-scene_description decode_scene(const std::string& text, const std::string& path);
+RTWEEKEND_ENGINE_FUNCTION scene_description decode_scene(const std::string& text, const std::string& path);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
+
+} // namespace rt
+
+#include "../constant_medium.h"
+#include "../material.h"
+#include "../mesh.h"
+#include "../quad.h"
+#include "../sphere.h"
+#include "../texture.h"
+#include "../transform.h"
+#include "../triangle.h"
+#include "../core/input_limits.h"
+#include "obj.h"
+#include "ply.h"
+
+namespace rt {
 
 namespace detail {
 
@@ -558,7 +566,7 @@ inline void scene_parser::line(const scene_line& line) {
 
 } // namespace detail
 
-inline scene_description parse_scene(std::istream& in, const std::string& name) {
+RTWEEKEND_ENGINE_FUNCTION scene_description parse_scene(std::istream& in, const std::string& name) {
     scene_description scene;
     detail::scene_parser parser(scene, name);
     std::string text;
@@ -586,7 +594,7 @@ inline scene_description parse_scene(std::istream& in, const std::string& name) 
     return scene;
 }
 
-inline void check_camera_image_size(const camera& c) {
+RTWEEKEND_ENGINE_FUNCTION void check_camera_image_size(const camera& c) {
     if (c.image_width < 1 || (c.image_height < 1 && !(std::isfinite(c.aspect_ratio) && c.aspect_ratio > 0))) return;
     // In double, as the camera derives it: a tiny aspect ratio must not overflow an int here.
     const double h = c.image_height > 0 ? double(c.image_height) : std::max(1.0, std::floor(c.image_width / c.aspect_ratio));
@@ -594,9 +602,10 @@ inline void check_camera_image_size(const camera& c) {
         check_image_size(uint64_t(c.image_width), uint64_t(h), "the image (camera image_width, image_height, aspect_ratio)");
 }
 
-inline scene_description load_scene(const std::string& path) { return decode_scene(read_file(path, "scene file"), path); }
+RTWEEKEND_ENGINE_FUNCTION scene_description load_scene(const std::string& path) { return decode_scene(read_file(path,
+                                                       "scene file"), path); }
 
-inline scene_description decode_scene(const std::string& text, const std::string& path) {
+RTWEEKEND_ENGINE_FUNCTION scene_description decode_scene(const std::string& text, const std::string& path) {
     std::istringstream in(text);
     scene_description scene = parse_scene(in, path);
     scene.files.insert(scene.files.begin(), path);
@@ -612,5 +621,7 @@ inline scene_description decode_scene(const std::string& text, const std::string
     }
     return scene;
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt

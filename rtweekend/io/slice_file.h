@@ -218,7 +218,7 @@ inline std::string encode_slice(const sample_slice& s) {
     pixel_sums own(r.width, r.height);
     own.rgb = s.sums;
     std::fill(own.counts.begin(), own.counts.end(), s.end_sample - s.first_sample);
-    std::string out = detail::encode_pfm(mean_image(own));
+    std::string out = encode_pfm(mean_image(own));
 
     out += slice_trailer_magic;
     out += std::to_string(detail::slice_version) + "\n";

@@ -48,18 +48,10 @@
 //
 // The XML is parsed by pugixml (Debian's libpugixml-dev), which the rtweekend CMake target links.
 
+#include "../core/engine_linkage.h"
 #include "../mesh.h"
 #include "../core/scene_error.h"
-#include "../sphere.h"
-#include "../vec3.h"
-#include "../whitted_material.h"
 #include "../course/whitted_scene.h"
-#include "../core/file.h"
-#include "../core/input_limits.h"
-#include "ply.h"
-#include "../core/text_lines.h"
-
-#include <pugixml.hpp>
 
 #include <algorithm>
 #include <array>
@@ -79,27 +71,42 @@
 namespace rt {
 
 // Reads a CENG795 XML scene. Throws scene_error (see above).
-whitted_scene load_xml_scene(const std::string& path);
+RTWEEKEND_ENGINE_FUNCTION whitted_scene load_xml_scene(const std::string& path);
 
 // load_xml_scene on a file's text already in memory: `path` names it in messages, and a plyFile
 // is read relative to its folder.
-whitted_scene decode_xml_scene(const std::string& text, const std::string& path);
+RTWEEKEND_ENGINE_FUNCTION whitted_scene decode_xml_scene(const std::string& text, const std::string& path);
 
 // What is wrong with a camera's ImageName as a file name inside the output directory, "" if
 // nothing: it must be a relative path without a ".." component (and not empty), so that the image
 // lands inside the directory the user chose (render -o DIR), never beside or above it; and it may
 // hold no control character (a line break would also split every message that names the file).
-std::string image_name_problem(const std::string& image_name);
+RTWEEKEND_ENGINE_FUNCTION std::string image_name_problem(const std::string& image_name);
 
 // Gives `mesh` area-weighted vertex normals and turns on smooth shading: each vertex's normal is
 // the normalised sum of the (unnormalised, so area-weighted) cross products (b - a) x (c - a) of
 // the faces that use it. A vertex whose sum vanishes takes the normal of its largest face; one
 // used only by zero-area faces, or by none, gets (0, 0, 0). Replaces normals and face_normals.
-void set_smooth_normals(triangle_mesh& mesh);
+RTWEEKEND_ENGINE_FUNCTION void set_smooth_normals(triangle_mesh& mesh);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
 
-inline std::string image_name_problem(const std::string& image_name) {
+} // namespace rt
+
+#include "../sphere.h"
+#include "../vec3.h"
+#include "../whitted_material.h"
+#include "../core/file.h"
+#include "../core/input_limits.h"
+#include "ply.h"
+#include "../core/text_lines.h"
+#include <pugixml.hpp>
+
+namespace rt {
+
+RTWEEKEND_ENGINE_FUNCTION std::string image_name_problem(const std::string& image_name) {
     if (image_name.empty()) return "is empty";
     for (char c : image_name)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
@@ -118,7 +125,7 @@ inline std::string image_name_problem(const std::string& image_name) {
     return {};
 }
 
-inline void set_smooth_normals(triangle_mesh& mesh) {
+RTWEEKEND_ENGINE_FUNCTION void set_smooth_normals(triangle_mesh& mesh) {
     const size_t n = mesh.positions.size();
     std::vector<vec3> sum(n, vec3(0, 0, 0)), largest(n, vec3(0, 0, 0));
     std::vector<double> magnitude(n, 0.0);
@@ -632,13 +639,15 @@ class xml_scene_reader {
 
 } // namespace detail
 
-inline whitted_scene load_xml_scene(const std::string& path) {
+RTWEEKEND_ENGINE_FUNCTION whitted_scene load_xml_scene(const std::string& path) {
     return decode_xml_scene(read_file(path, "XML scene file"), path);
 }
 
-inline whitted_scene decode_xml_scene(const std::string& text, const std::string& path) {
+RTWEEKEND_ENGINE_FUNCTION whitted_scene decode_xml_scene(const std::string& text, const std::string& path) {
     return detail::xml_scene_reader(path, text).read();
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt
 

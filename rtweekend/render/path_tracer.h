@@ -11,22 +11,48 @@
 // A compiled scene serves any number of cameras; it is most precise near its origin, so compile it
 // around the cameras (path_trace(world, ...) compiles around the frame's position).
 
-#include "../hittable.h"
+#include "../core/engine_linkage.h"
+#include "../point_light.h"
 #include "camera_frame.h"
+#include "environment.h"
+#include "render_settings.h"
+#include "scheduler.h"
+
+#include <vector>
+
+namespace rt {
+
+class compiled_scene;
+class hittable;
+
+// Renders the compiled scene through `frame` with the path tracer. Throws scene_error on bad input.
+RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const compiled_scene& scene, const camera_frame& frame,
+                                                   const environment& env, const render_settings& settings);
+// Compiles `world` around the frame's position (with point lights, which only light sampling finds:
+// the bsdf estimator never does), then renders it.
+RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const hittable& world, const camera_frame& frame,
+                                                   const environment& env, const render_settings& settings,
+                                                   const std::vector<point_light>& point_lights = {});
+
+} // namespace rt
+
+// --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
+
+#include "../hittable.h"
 #include "caustic_paths.h"
 #include "../scene/compiled_scene.h"
-#include "environment.h"
 #include "../core/in_place_array.h"
 #include "../scene/light_sampling.h"
 #include "../scene/light_set.h"
 #include "../core/ray_offset.h"
-#include "render_settings.h"
 #include "../core/rng.h"
 #include "sampler.h"
 #include "../scene/scene_compiler.h"
-#include "scheduler.h"
 #include "../scene/surface_coordinates.h"
 #include "user_material.h"
+#include "vertex_material.h"
 
 #include <chrono>
 #include <cstdint>
@@ -34,29 +60,8 @@
 #include <memory>
 #include <optional>
 #include <type_traits>
-#include <vector>
-
-// path_trace is defined below inline, as a header-only library's functions are. A program whose
-// files would each compile it again can compile it once instead: one file defines
-// RTWEEKEND_PATH_TRACER_INLINE as nothing before including this header (a definition that is not
-// inline), and the others define RTWEEKEND_LINK_PATH_TRACER (the declarations alone). This
-// project's apps and tests do so (apps/path_tracer_once.cpp), as it is most of their build time.
-#ifndef RTWEEKEND_PATH_TRACER_INLINE
-#define RTWEEKEND_PATH_TRACER_INLINE inline
-#endif
 
 namespace rt {
-
-// Renders the compiled scene through `frame` with the path tracer. Throws scene_error on bad input.
-render_result path_trace(const compiled_scene& scene, const camera_frame& frame, const environment& env,
-                         const render_settings& settings);
-// Compiles `world` around the frame's position (with point lights, which only light sampling finds:
-// the bsdf estimator never does), then renders it.
-render_result path_trace(const hittable& world, const camera_frame& frame, const environment& env,
-                         const render_settings& settings, const std::vector<point_light>& point_lights = {});
-
-// --- IMPLEMENTATION -----------------------------------------------------------------------------
-
 namespace detail {
 
 // Russian roulette (nee only): past a number of scattering events, a path whose throughput t
@@ -74,65 +79,7 @@ namespace detail {
 inline constexpr float roulette_weight = 0.5f;
 inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 : 2; }
 
-// The material at a path vertex, as the estimators ask it: a built-in material through the
-// contract (bsdf.h), a user's through its virtual functions (user_material.h).
-//
-// Smooth shading. A smooth mesh's interpolated normal ns (the shading normal) tilts away from the
-// triangle's own normal ng, so a lobe drawn about ns can dip below the surface, where a ray
-// would pass through it: rays lost (dark facets) or leaking. The rule here keeps every bit of
-// energy instead: a direction below the geometric surface is mirrored through it,
-// w -> w - 2 (w . ng) ng, and the material seen by the path is the folded one,
-//   f'(wi) = f(wi) + f(mirror(wi))   (wi above the surface; 0 below), pdf' likewise,
-// which reflects exactly what f reflects over the whole sphere (the mirror maps the lower half
-// onto the upper one and keeps solid angle). A Lambertian surface under shading normals thus
-// weighs every sample by its albedo exactly, as it does without them: a white furnace stays
-// white and no facet turns black. Delta lobes are mirrored back to the side they belong to
-// (reflection: the incoming side; refraction: the other). Light sampling and multiple importance
-// sampling see the same folded f' and pdf'. User materials get the shading normal as is.
-template <bool UserMaterials>
-struct vertex_material {
-    const compiled_material& m;
-    const shading_point& sp; // the caller's: a copy, written field by field and read back whole, stalled the store buffer
-    vec3f wo;
-    const user_material_hit* user; // set for a user's material, which has scattered already
-    vec3f ng;                      // the geometric normal, on wo's side
-    bool folded = false;           // shading normal differs from ng: fold as above
-
-    bool is_user() const { return UserMaterials && user; }
-    bool has_density() const { return is_user() ? user->has_density() : m.has_non_delta_lobe(); }
-    vec3f mirror(const vec3f& w) const { return w - (2.0f * dot(w, ng)) * ng; }
-    vec3f eval(const vec3f& wi) const {
-        if (is_user()) return user->eval(wi);
-        if (!folded) return m.eval(wo, wi, sp);
-        if (!(dot(wi, ng) > 0)) return {0, 0, 0};
-        return m.eval(wo, wi, sp) + m.eval(wo, mirror(wi), sp);
-    }
-    float pdf(const vec3f& wi) const {
-        if (is_user()) return user->pdf(wi);
-        if (!folded) return m.pdf(wo, wi, sp);
-        if (!(dot(wi, ng) > 0)) return 0;
-        return m.pdf(wo, wi, sp) + m.pdf(wo, mirror(wi), sp);
-    }
-    template <class Uniform>
-    bool sample(Uniform& u, material_sample& s) const {
-        if (is_user()) return user->sample(s);
-        if (!m.sample(wo, sp, u, s)) return false;
-        if (!folded) return true;
-        if (s.is_delta()) {
-            const float side = dot(s.wi, ng);
-            if (s.sampled == delta_transmission ? side > 0 : side < 0) s.wi = mirror(s.wi);
-            return true;
-        }
-        if (dot(s.wi, ng) < 0) s.wi = mirror(s.wi);
-        const float density = pdf(s.wi);
-        if (!(density > 0)) return false;
-        s.value = eval(s.wi) * (1.0f / density);
-        s.pdf = density;
-        return true;
-    }
-};
-
-// One path from the camera, estimated with E, taken a bounce at a time: ray() is the ray to trace
+// One path from the camera, taken a bounce at a time: ray() is the ray to trace
 // next, advance(found, hit) takes what it met, and radiance_so_far() is what the path carries,
 // all of it once done().
 // Materials see the shading normal (a smooth mesh's interpolated one, folded as vertex_material
@@ -143,13 +90,18 @@ struct vertex_material {
 // The path tracer advances a batch's paths side by side, a bounce of each in turn: their rays
 // are traced together (as packets, compiled_scene::intersect_batch), and the processor overlaps
 // one path's steps with another's where a single path would wait on each of its own in turn.
-template <path_estimator E, bool UserMaterials>
+//
+// NeeOnly: the path tracer's default estimator (next-event estimation), compiled on its own for
+// speed; otherwise the estimator is chosen at run time (book 1's and book 3's, and any with user
+// code), which costs one test where a choice is made, and one copy of the code to compile.
+template <bool NeeOnly, bool UserMaterials>
 class camera_path {
   public:
     camera_path(const compiled_scene& scene, const environment& env, const ray3f& camera_ray, int max_depth,
-                pixel_sampler& ps, uint64_t& rays, const caustic_splats* caustics = nullptr)
+                pixel_sampler& ps, uint64_t& rays, path_estimator estimator, const caustic_splats* caustics = nullptr)
         : scene(scene), env(env), lights(scene.lights), roulette_start(roulette_depth(scene.lights)),
-          max_depth(max_depth), ps(ps), rays(rays), r(camera_ray), done_(max_depth <= 0) {
+          max_depth(max_depth), ps(ps), rays(rays), estimator_(NeeOnly ? path_estimator::nee : estimator),
+          r(camera_ray), done_(max_depth <= 0) {
         // The sample's own light path, its numbers from a stream split off the sample's own, which
         // it leaves as it was (joined to every vertex of the path, the light path gains little
         // from stratified numbers, which cost more to draw).
@@ -167,6 +119,8 @@ class camera_path {
 
   private:
     void finish() { done_ = true; }
+    bool nee() const { return NeeOnly || estimator_ == path_estimator::nee; }
+    bool mixture() const { return !NeeOnly && estimator_ == path_estimator::mixture; }
 
     const compiled_scene& scene;
     const environment& env;
@@ -174,6 +128,7 @@ class camera_path {
     const int roulette_start, max_depth;
     pixel_sampler& ps;
     uint64_t& rays;
+    const path_estimator estimator_;
     ray3f r;
     int depth = 0;
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
@@ -189,8 +144,8 @@ class camera_path {
     caustic_connection caustic;
 };
 
-template <path_estimator E, bool UserMaterials>
-void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) {
+template <bool NeeOnly, bool UserMaterials>
+void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit& hit) {
     ++rays;
     if (!found) {
         if (!(depth > 0 && env.camera_rays_only)) radiance += throughput * env.eval(r.dir);
@@ -213,7 +168,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
     if (m.emits()) {
         const vec3f le = m.emitted(wo, sp);
         float weight = 1;
-        if (E == path_estimator::nee && !count_emission_fully && !is_black(le)) {
+        if (nee() && !count_emission_fully && !is_black(le)) {
             // Light sampling at the last vertex could have drawn this point too: weigh the two
             // strategies by the power heuristic (Veach 1997, ch. 9).
             const uint32_t l = lights.light_at(hit.kind, hit.index);
@@ -261,14 +216,14 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
     };
 
     // Next-event estimation: a point on a light, and a shadow ray to it.
-    if (E == path_estimator::nee && !lights.empty() && has_density) {
+    if (nee() && !lights.empty() && has_density) {
         light_choice lc;
         dimension_uniforms u = light_uniforms(ps, depth);
         if (lights.sample(hit.p, u, lc)) add_light_sample(lc);
     }
     // The mixture below covers area lights only; a point light, which no direction can hit,
     // is sampled on its own (next-event estimation without a second strategy to weigh).
-    if (E == path_estimator::mixture && lights.has_point_lights() && has_density) {
+    if (mixture() && lights.has_point_lights() && has_density) {
         light_choice lc;
         dimension_uniforms u = light_uniforms(ps, depth);
         if (lights.sample_point(hit.p, u, lc)) add_light_sample(lc);
@@ -281,7 +236,7 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
 
     material_sample s;
     dimension_uniforms material_u = material_uniforms(ps, depth);
-    if (E == path_estimator::mixture && lights.has_area_lights() && has_density) {
+    if (mixture() && lights.has_area_lights() && has_density) {
         // Book 3's one-sample mixture: the direction comes from the lights or from the
         // material, half the time each, and is weighed by the mixture of both densities.
         if (ps.get1d(sample_dimension::bounce(depth) + sample_dimension::strategy) < 0.5f) {
@@ -305,11 +260,11 @@ void camera_path<E, UserMaterials>::advance(bool found, const surface_hit& hit) 
     }
     throughput *= s.value;
     if (caustic.active()) caustic.bounced(depth, hit, m, s, r.dir, last_pdf);
-    count_emission_fully = E != path_estimator::nee || s.is_delta();
+    count_emission_fully = !nee() || s.is_delta();
     last_p = hit.p;
     last_pdf = s.pdf;
 
-    if (E == path_estimator::nee && depth >= roulette_start) {
+    if (nee() && depth >= roulette_start) {
         const float q = max_component(throughput) * (1.0f / roulette_weight);
         if (q < 1.0f) {
             if (!(ps.get1d(sample_dimension::bounce(depth) + sample_dimension::roulette) < q)) return finish();
@@ -331,10 +286,10 @@ struct batch_buffers {
 };
 
 // One path from start to end: the radiance it carries.
-template <path_estimator E, bool UserMaterials>
+template <bool NeeOnly, bool UserMaterials>
 vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3f& r, int max_depth, pixel_sampler& ps,
-                 uint64_t& rays, const caustic_splats* caustics = nullptr) {
-    camera_path<E, UserMaterials> path(scene, env, r, max_depth, ps, rays, caustics);
+                 uint64_t& rays, path_estimator estimator, const caustic_splats* caustics = nullptr) {
+    camera_path<NeeOnly, UserMaterials> path(scene, env, r, max_depth, ps, rays, estimator, caustics);
     surface_hit hit;
     while (!path.done()) {
         const bool found = scene.intersect(path.ray(), hit);
@@ -350,13 +305,12 @@ render_result path_trace_from(const compiled_scene& scene, const camera_frame& f
                               const render_settings& settings, std::chrono::steady_clock::time_point start);
 } // namespace detail
 
-#ifndef RTWEEKEND_LINK_PATH_TRACER
-RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const compiled_scene& scene, const camera_frame& frame,
+RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const compiled_scene& scene, const camera_frame& frame,
                                                       const environment& env, const render_settings& settings) {
     return detail::path_trace_from(scene, frame, env, settings, std::chrono::steady_clock::now());
 }
 
-RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, const camera_frame& frame,
+RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const hittable& world, const camera_frame& frame,
                                                       const environment& env, const render_settings& settings,
                                                       const std::vector<point_light>& point_lights) {
     const auto start = std::chrono::steady_clock::now(); // the statistics' time includes the compile
@@ -365,7 +319,7 @@ RTWEEKEND_PATH_TRACER_INLINE render_result path_trace(const hittable& world, con
 }
 
 // The render itself: the scene seen through `frame`, from `start` on.
-RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compiled_scene& scene,
+RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_scene& scene,
                                                                    const camera_frame& camera,
                                                                    const environment& env,
                                                                    const render_settings& settings,
@@ -381,8 +335,8 @@ RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compile
                           settings.adaptive_error == 0 && traces_caustics(scene);
     // A batch of samples: their camera rays together (camera_frame::sample_rays), then each
     // path on its own.
-    auto trace_batch = [&](auto estimator, sample_batch& b, const caustic_splats* splats) {
-        constexpr path_estimator E = decltype(estimator)::value;
+    auto trace_batch = [&](auto nee_only, sample_batch& b, const caustic_splats* splats) {
+        constexpr bool NeeOnly = decltype(nee_only)::value;
         in_place_array<pixel_sampler, sample_batch::capacity> samplers;
         pixel_sampler* lanes[sample_batch::capacity];
         for (int k = 0; k < b.count; ++k) lanes[k] = &samplers.emplace_back(plan, b.x[k], b.y[k], b.s[k], b.rng[k]);
@@ -396,7 +350,8 @@ RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compile
             // one path after another.
             for (int k = 0; k < b.count; ++k) {
                 detail::scoped_sample_rng guard(b.rng[k]);
-                b.color[k] = detail::trace_path<E, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k]);
+                b.color[k] = detail::trace_path<false, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k],
+                                                             settings.estimator);
             }
             return;
         }
@@ -404,8 +359,9 @@ RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compile
         // together (as packets: the camera rays start together and point nearly the same way;
         // later bounces' rays less so, but the walk through the top of the tree, which most of
         // them share, is paid once, and the processor overlaps the rays' work).
-        in_place_array<detail::camera_path<E, false>, sample_batch::capacity> paths;
-        for (int k = 0; k < b.count; ++k) paths.emplace_back(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], splats);
+        in_place_array<detail::camera_path<NeeOnly, false>, sample_batch::capacity> paths;
+        for (int k = 0; k < b.count; ++k)
+            paths.emplace_back(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], settings.estimator, splats);
         int live[sample_batch::capacity], n = 0;
         for (int k = 0; k < b.count; ++k)
             if (!paths[k].done()) live[n++] = k;
@@ -426,7 +382,7 @@ RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compile
             }
             int still = 0;
             for (int i = 0; i < n; ++i) {
-                detail::camera_path<E, false>& path = paths[live[i]];
+                detail::camera_path<NeeOnly, false>& path = paths[live[i]];
                 path.advance(found[i], hits[i]);
                 if (!path.done()) live[still++] = live[i];
             }
@@ -439,24 +395,17 @@ RTWEEKEND_PATH_TRACER_INLINE render_result detail::path_trace_from(const compile
                               settings.caustic_paths * double(frame.width) * double(frame.height));
         return render_samples_with_splats(
             frame.width, frame.height, settings,
-            [&](sample_batch& b) {
-                trace_batch(std::integral_constant<path_estimator, path_estimator::nee>{}, b, &splats);
-            },
-            splats, start);
+            [&](sample_batch& b) { trace_batch(std::true_type{}, b, &splats); }, splats, start);
     }
-    auto render_with = [&](auto estimator) {
+    if (settings.estimator == path_estimator::nee)
         return render_samples(
-            frame.width, frame.height, settings, [&](sample_batch& b) { trace_batch(estimator, b, nullptr); },
+            frame.width, frame.height, settings, [&](sample_batch& b) { trace_batch(std::true_type{}, b, nullptr); },
             start);
-    };
-    switch (settings.estimator) {
-    case path_estimator::bsdf: return render_with(std::integral_constant<path_estimator, path_estimator::bsdf>{});
-    case path_estimator::mixture:
-        return render_with(std::integral_constant<path_estimator, path_estimator::mixture>{});
-    case path_estimator::nee: break;
-    }
-    return render_with(std::integral_constant<path_estimator, path_estimator::nee>{});
+    return render_samples(
+        frame.width, frame.height, settings, [&](sample_batch& b) { trace_batch(std::false_type{}, b, nullptr); },
+        start);
 }
-#endif
 
 } // namespace rt
+
+#endif // RTWEEKEND_ENGINE_BODIES

@@ -34,6 +34,7 @@
 #include "../image/image.h"
 #include "processors.h"
 #include "render_settings.h"
+#include "../core/function_ref.h"
 #include "../core/rng.h"
 #include "../core/vec3f.h"
 
@@ -220,24 +221,23 @@ sample_totals run_jobs(int threads, int count, Job&& job) {
     return {rays.load(), samples.load(), nonfinite.load(), saturated.load()};
 }
 
-// Whether `sample` takes batches (sample_batch&) rather than one sample at a time.
-template <class SampleFn>
-inline constexpr bool takes_batches = std::is_invocable_v<SampleFn&, sample_batch&>;
+// A sample function as the scheduler takes it, compiled once for every integrator: a batch's
+// samples at a time, and whether it wants one pixel's samples per batch (a per-sample function,
+// which render_samples turns into one: a stop then comes exactly between pixels).
+struct batch_function {
+    function_ref<void(sample_batch&)> take;
+    bool pixel_by_pixel = false;
+};
 
 // The samples of batch b, each from its own generator; a NaN or infinite sample is dropped and
 // counts as a sample of 0. Afterwards b.color and b.rays hold each sample's result and rays.
-template <class SampleFn>
-void take_samples(uint64_t seed, int width, SampleFn& sample, sample_batch& b, sample_totals& t) {
+inline void take_samples(uint64_t seed, int width, const batch_function& sample, sample_batch& b, sample_totals& t) {
     for (int k = 0; k < b.count; ++k) {
         const uint64_t pixel = uint64_t(b.y[k]) * uint64_t(width) + uint64_t(b.x[k]);
         b.rng[k] = sample_rng(seed, pixel, uint64_t(b.s[k]));
         b.rays[k] = 0;
     }
-    if constexpr (takes_batches<SampleFn>) {
-        sample(b);
-    } else {
-        for (int k = 0; k < b.count; ++k) b.color[k] = sample(b.x[k], b.y[k], b.s[k], b.rng[k], b.rays[k]);
-    }
+    sample.take(b);
     for (int k = 0; k < b.count; ++k) {
         t.rays += b.rays[k];
         ++t.samples;
@@ -253,10 +253,10 @@ void take_samples(uint64_t seed, int width, SampleFn& sample, sample_batch& b, s
 // or none. A per-sample function gets one pixel's samples per batch, so that it stops exactly
 // there; a batched one gets samples of consecutive pixels together. done(batch, k) sees each
 // sample taken, in order; the caller flushes the last batch.
-template <class SampleFn, class Done>
 class batcher {
   public:
-    batcher(uint64_t seed, int width, SampleFn& sample, sample_totals& totals, Done done)
+    using done_function = function_ref<void(const sample_batch&, int)>;
+    batcher(uint64_t seed, int width, const batch_function& sample, sample_totals& totals, done_function done)
         : seed_(seed), width_(width), sample_(sample), totals_(totals), done_(done) {}
 
     // The samples [first, last) of pixel (x, y).
@@ -268,7 +268,7 @@ class batcher {
             batch_.s[k] = s;
             if (batch_.count == sample_batch::capacity) flush();
         }
-        if (!takes_batches<SampleFn>) flush();
+        if (sample_.pixel_by_pixel) flush();
     }
     void flush() {
         if (batch_.count == 0) return;
@@ -280,9 +280,9 @@ class batcher {
   private:
     uint64_t seed_;
     int width_;
-    SampleFn& sample_;
+    const batch_function& sample_;
     sample_totals& totals_;
-    Done done_;
+    done_function done_;
     sample_batch batch_;
 };
 
@@ -402,9 +402,8 @@ render_stats make_stats(int width, int height, const render_settings& settings, 
 // round's samples taken in parallel, each pixel by one thread in sample order. A stop ends the
 // render between pixels: the pixels of the round not reached keep the samples of earlier rounds
 // (none, if it was round 0).
-template <class SampleFn>
-render_result run_adaptive(int w, int h, const render_settings& settings, SampleFn& sample,
-                           std::chrono::steady_clock::time_point start) {
+inline render_result run_adaptive(int w, int h, const render_settings& settings, const batch_function& sample,
+                                  std::chrono::steady_clock::time_point start) {
     const int threads = render_threads(settings, int(std::min<int64_t>(int64_t(w) * h, 1 << 20)));
     adaptive_settings plan_settings;
     plan_settings.width = w;
@@ -428,9 +427,10 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
         const int jobs = int(plan.job_count());
         auto take_round = [&] {
             return run_jobs(threads, jobs, [&](int j, sample_totals& mine) {
-                batcher samples(settings.seed, w, sample, mine, [&](const sample_batch& b, int k) {
+                auto add = [&](const sample_batch& b, int k) {
                     plan.add(uint64_t(b.y[k]) * uint64_t(w) + uint64_t(b.x[k]), b.color[k], b.rays[k]);
-                });
+                };
+                batcher samples(settings.seed, w, sample, mine, add);
                 for (const adaptive_sampler::work_item& item : plan.job(size_t(j))) {
                     if (stop_requested(settings)) break;
                     samples.add_pixel(int(item.pixel % uint64_t(w)), int(item.pixel / uint64_t(w)), item.first,
@@ -486,11 +486,12 @@ render_result run_adaptive(int w, int h, const render_settings& settings, Sample
 // The passes wait for each other (a pass must not start on a pixel whose previous pass is still
 // running, as both would write its sums); a pass costs as much as all before it, so the waits at
 // their ends add up to about twice the last pass's.
-// No splats: the scheduler's plain form.
-struct no_splats {
-    int jobs_per_sample() const { return 0; }
-    template <class Add>
-    void run(int, int, Add&&, sample_totals&) const {}
+// Work that adds to any pixel (render_samples_with_splats), as the scheduler takes it: jobs per
+// sample index, and run(s, job, add, totals), which calls add(x, y, value).
+struct splat_function {
+    using add_function = function_ref<void(int, int, const vec3f&)>;
+    int jobs_per_sample = 0;
+    function_ref<void(int, int, add_function, sample_totals&)> run;
 };
 
 // Splats of a pass, in fixed point (fixed_point.h), added from any thread: integer additions in
@@ -502,9 +503,8 @@ struct splat_sums {
     static int64_t splat_limit(int spp) { return sample_limit(int64_t(spp) * 64); }
 };
 
-template <class SampleFn, class Splats = no_splats>
-render_result run_tiles(int w, int h, const render_settings& settings, SampleFn& sample,
-                        std::chrono::steady_clock::time_point start, const Splats& splats = Splats{}) {
+inline render_result run_tiles(int w, int h, const render_settings& settings, const batch_function& sample,
+                               std::chrono::steady_clock::time_point start, const splat_function* splats = nullptr) {
     constexpr int tile = 16;
     const int spp = settings.samples_per_pixel;
     const int first_sample = settings.first_sample, end_sample = settings.sample_end();
@@ -529,7 +529,7 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
     std::atomic<int64_t> done{0};
     sample_totals totals;
     // Splats: this pass's, and those of the passes that completed ([first_sample, splat_end)).
-    const int splat_jobs = splats.jobs_per_sample();
+    const int splat_jobs = splats ? splats->jobs_per_sample : 0;
     std::vector<int64_t> kept_splats(splat_jobs > 0 ? size_t(w) * size_t(h) * 3 : 0, 0);
     splat_sums pass_splats(splat_jobs > 0 ? size_t(w) * size_t(h) : 0);
     int splat_end = first_sample;
@@ -547,14 +547,15 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
             int x1 = std::min(x0 + tile, w), y1 = std::min(y0 + tile, h);
             // Each pixel's sum, added to in place: a pixel's samples are all in one batch or in
             // batches taken one after the other, and no other worker touches the tile.
-            batcher samples(settings.seed, w, sample, mine, [&](const sample_batch& b, int k) {
+            auto add = [&](const sample_batch& b, int k) {
                 const size_t i = (size_t(b.y[k]) * size_t(w) + size_t(b.x[k])) * 3;
                 const vec3f& c = b.color[k];
                 bool clamped = false;
                 // No overflow: at most spp samples of at most `limit` each (fixed_point.h).
                 add_fixed3(c.x, c.y, c.z, limit, &sums.rgb[i], clamped);
                 if (clamped) ++mine.saturated;
-            });
+            };
+            batcher samples(settings.seed, w, sample, mine, add);
             bool stopped = false;
             for (int y = y0; y < y1 && !stopped; ++y) {
                 for (int x = x0; x < x1; ++x) {
@@ -583,7 +584,7 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
                     pass_splats.rgb[i + 2].fetch_add(to_fixed(value.z, splat_limit, clamped), std::memory_order_relaxed);
                     if (clamped) ++mine.saturated;
                 };
-                splats.run(first + job / splat_jobs, job % splat_jobs, add, mine);
+                splats->run(first + job / splat_jobs, job % splat_jobs, add, mine);
             });
             totals.rays += st.rays;
             totals.saturated += st.saturated;
@@ -623,20 +624,48 @@ render_result run_tiles(int w, int h, const render_settings& settings, SampleFn&
 
 } // namespace detail
 
+namespace detail {
+// The scheduler itself, for a sample function of either form (batches, or one sample at a time).
+inline render_result run_samples(int width, int height, const render_settings& settings, const batch_function& sample,
+                                 std::chrono::steady_clock::time_point start, const splat_function* splats) {
+    settings.check();
+    if (settings.adaptive_error > 0) {
+        if (splats) throw scene_error("splats need uniform sampling (adaptive sampling is on)");
+        return run_adaptive(width, height, settings, sample, start);
+    }
+    return run_tiles(width, height, settings, sample, start, splats);
+}
+
+// A sample function as a batch_function: a batched one as it is; a per-sample one called for
+// each sample of a batch, which then holds one pixel's samples.
+template <class SampleFn>
+render_result run_any(int width, int height, const render_settings& settings, SampleFn& sample,
+                      std::chrono::steady_clock::time_point start, const splat_function* splats) {
+    if constexpr (std::is_invocable_v<SampleFn&, sample_batch&>) {
+        return run_samples(width, height, settings, batch_function{sample, false}, start, splats);
+    } else {
+        auto one_by_one = [&](sample_batch& b) {
+            for (int k = 0; k < b.count; ++k) b.color[k] = sample(b.x[k], b.y[k], b.s[k], b.rng[k], b.rays[k]);
+        };
+        return run_samples(width, height, settings, batch_function{one_by_one, true}, start, splats);
+    }
+}
+} // namespace detail
+
 template <class SampleFn>
 render_result render_samples(int width, int height, const render_settings& settings, SampleFn&& sample,
                              std::chrono::steady_clock::time_point start) {
-    settings.check();
-    if (settings.adaptive_error > 0) return detail::run_adaptive(width, height, settings, sample, start);
-    return detail::run_tiles(width, height, settings, sample, start);
+    return detail::run_any(width, height, settings, sample, start, nullptr);
 }
 
 template <class SampleFn, class Splats>
 render_result render_samples_with_splats(int width, int height, const render_settings& settings, SampleFn&& sample,
                                          const Splats& splats, std::chrono::steady_clock::time_point start) {
-    settings.check();
-    if (settings.adaptive_error > 0) throw scene_error("splats need uniform sampling (adaptive sampling is on)");
-    return detail::run_tiles(width, height, settings, sample, start, splats);
+    auto run = [&](int s, int job, detail::splat_function::add_function add, detail::sample_totals& totals) {
+        splats.run(s, job, add, totals);
+    };
+    const detail::splat_function work{splats.jobs_per_sample(), run};
+    return detail::run_any(width, height, settings, sample, start, &work);
 }
 
 inline std::string stats_line(const render_stats& s) {

@@ -18,6 +18,7 @@
 // and a scene of a handful of shapes has no BVH nodes at all.
 
 #include "../core/constants.h"
+#include "../core/engine_linkage.h"
 #include "../hittable.h"
 #include "../core/material_kinds.h"
 #include "bvh.h"
@@ -70,6 +71,9 @@ class compiled_scene {
 
     // The kind of every shape in the BVH when there is only one kind; empty for a mix (or none).
     std::optional<shape_kind> single_kind;
+    // When that kind has a walk of its own (shape_kinds.h: own_walk_kinds), its number there.
+    static constexpr uint8_t no_single_walk = 255;
+    uint8_t single_walk = no_single_walk;
     bool culls_back_faces = false; // set_back_face_culling was called
 
     // Whether rendering calls user code (shapes or materials), which may call random_double().
@@ -110,12 +114,7 @@ class compiled_scene {
     void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
 
     // Bytes held for tracing: the sets and the BVH nodes.
-    size_t geometry_bytes() const {
-        size_t b = bvh.stats.bytes();
-        for_each_kind<shape_kinds>([&](auto k) { b += set<typename decltype(k)::type>().bytes(); });
-        for (const auto& o : objects) b += o->geometry_bytes();
-        return b;
-    }
+    size_t geometry_bytes() const;
 
     // What a ray's walk keeps for the kinds' kernels (shape_kinds.h).
     using leaf_state = rt::leaf_state;
@@ -141,6 +140,30 @@ class compiled_scene {
 };
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+
+template <query Q>
+bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, leaf_state& state) const {
+    if (single_walk != no_single_walk) {
+        return visit_kind<own_walk_kinds>(single_walk, [&](auto kind) {
+            return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
+                return leaf_kernel<Q, typename decltype(kind)::type>(r, ref, t_best, best, state);
+            });
+        });
+    }
+    return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
+        return with_shape_kind(bvh_ref::kind(ref), [&](auto kind) {
+            return leaf_kernel<Q, typename decltype(kind)::type>(r, ref, t_best, best, state);
+        });
+    });
+}
+
+template <class Predicate>
+void compiled_scene::set_back_face_culling(Predicate cullable) {
+    for_each_kind<shape_kinds>([&](auto k) { set<typename decltype(k)::type>().mark_culled(cullable); });
+    culls_back_faces = true;
+    // Objects are compiled for this scene (a copy of the scene shares them, and their marks).
+    for (auto& o : objects) o->set_back_face_culling(cullable);
+}
 
 namespace detail {
 
@@ -209,24 +232,11 @@ inline void rays_to_lanes(const ray3f* r, int count, float (*lane)[floatv::width
 
 } // namespace detail
 
-template <query Q>
-bool compiled_scene::trace(const ray3f& r, float& tmax, hit_ref& best, leaf_state& state) const {
-    if (single_kind) {
-        return with_shape_kind(*single_kind, [&](auto kind) {
-            return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
-                return leaf_kernel<Q, typename decltype(kind)::type>(r, ref, t_best, best, state);
-            });
-        });
-    }
-    return traverse<Q == query::any>(bvh, r, tmax, [&](uint32_t ref, float& t_best) {
-        return with_shape_kind(bvh_ref::kind(ref), [&](auto kind) {
-            return leaf_kernel<Q, typename decltype(kind)::type>(r, ref, t_best, best, state);
-        });
-    });
-}
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
 
-inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref& best, const leaf_state& state,
-                                         surface_hit& hit) const {
+RTWEEKEND_ENGINE_FUNCTION void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref& best,
+                                                            const leaf_state& state, surface_hit& hit) const {
     hit.t = t;
     hit.time = r.time;
     hit.has_uv = false;
@@ -239,7 +249,8 @@ inline void compiled_scene::complete_hit(const ray3f& r, float t, const hit_ref&
     });
 }
 
-inline void compiled_scene::surface_coordinates(const surface_hit& hit, double& u, double& v) const {
+RTWEEKEND_ENGINE_FUNCTION void compiled_scene::surface_coordinates(const surface_hit& hit, double& u,
+                                                                   double& v) const {
     if (hit.has_uv) {
         u = hit.u;
         v = hit.v;
@@ -250,7 +261,8 @@ inline void compiled_scene::surface_coordinates(const surface_hit& hit, double& 
 
 // The user's hittables without a box, in double precision and world coordinates, after the BVH
 // found `hit` (if `found`); one of them wins if it is nearer.
-inline bool compiled_scene::intersect_unbounded(const ray3f& r, bool found, surface_hit& hit) const {
+RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::intersect_unbounded(const ray3f& r, bool found,
+                                                                   surface_hit& hit) const {
     const ray world_ray(origin + r.origin.to_double(), r.dir.to_double(), r.time);
     double closest = found ? hit.t : r.tmax;
     hit_record rec;
@@ -269,7 +281,7 @@ inline bool compiled_scene::intersect_unbounded(const ray3f& r, bool found, surf
     return true;
 }
 
-inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
+RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
     hit.user_shape = nullptr;
     float t = r.tmax;
     hit_ref best;
@@ -281,7 +293,8 @@ inline bool compiled_scene::intersect(const ray3f& r, surface_hit& hit) const {
     return found;
 }
 
-inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hit* hits, bool* found) const {
+RTWEEKEND_ENGINE_FUNCTION void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hit* hits,
+                                                               bool* found) const {
     constexpr int W = int(floatv::width);
     // Below this many rays a packet's tests (eight boxes for every lane a node) cost more than
     // the rays' own walks: 4 packets were 4 % fewer instructions on the cover than packets of
@@ -340,7 +353,7 @@ inline void compiled_scene::intersect_batch(int n, const ray3f* rays, surface_hi
     }
 }
 
-inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const {
+RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface_hit& hit) const {
     if (!culls_back_faces) return intersect(r, hit);
     hit.user_shape = nullptr;
     float t = r.tmax;
@@ -353,7 +366,7 @@ inline bool compiled_scene::intersect_culling_back_faces(const ray3f& r, surface
     return found;
 }
 
-inline bool compiled_scene::occluded(const ray3f& r) const {
+RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::occluded(const ray3f& r) const {
     float t = r.tmax;
     hit_ref best;
     leaf_state state;
@@ -367,12 +380,13 @@ inline bool compiled_scene::occluded(const ray3f& r) const {
     return false;
 }
 
-template <class Predicate>
-void compiled_scene::set_back_face_culling(Predicate cullable) {
-    for_each_kind<shape_kinds>([&](auto k) { set<typename decltype(k)::type>().mark_culled(cullable); });
-    culls_back_faces = true;
-    // Objects are compiled for this scene (a copy of the scene shares them, and their marks).
-    for (auto& o : objects) o->set_back_face_culling(cullable);
+RTWEEKEND_ENGINE_FUNCTION size_t compiled_scene::geometry_bytes() const {
+    size_t b = bvh.stats.bytes();
+    for_each_kind<shape_kinds>([&](auto k) { b += set<typename decltype(k)::type>().bytes(); });
+    for (const auto& o : objects) b += o->geometry_bytes();
+    return b;
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt

@@ -20,18 +20,12 @@
 // a shape without a material, mesh indices out of range) throws scene_error. Triangles of zero
 // area can never be hit: a mesh's are left out and counted, a single one is an error.
 
+#include "../core/engine_linkage.h"
 #include "../core/scene_error.h"
 #include "../hittable.h"
 #include "../material.h"
 #include "../point_light.h"
-#include "affine_map.h"
-#include "bvh.h"
-#include "classify.h"
 #include "compiled_scene.h"
-#include "convex_medium.h"
-#include "material_compiler.h"
-#include "shape_kinds.h"
-#include "validate.h"
 
 #include <algorithm>
 #include <array>
@@ -46,14 +40,29 @@
 
 namespace rt {
 
-compiled_scene compile_scene(const hittable& world, const point3& origin);
+RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin);
 // The same, with point lights for light sampling (besides the emitters the world holds).
-compiled_scene compile_scene(const hittable& world, const point3& origin, const std::vector<point_light>& point_lights);
+RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin,
+                                                       const std::vector<point_light>& point_lights);
 
 // The table entry for the material a user's hittable reported at a hit (compiled on the spot).
-compiled_material compile_reported_material(const hit_record& rec);
+RTWEEKEND_ENGINE_FUNCTION compiled_material compile_reported_material(const hit_record& rec);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
+
+} // namespace rt
+
+#include "affine_map.h"
+#include "bvh.h"
+#include "classify.h"
+#include "convex_medium.h"
+#include "material_compiler.h"
+#include "shape_kinds.h"
+#include "validate.h"
+
+namespace rt {
 
 namespace detail {
 
@@ -484,8 +493,8 @@ inline void scene_compiler::find_lights() {
 
 } // namespace detail
 
-inline compiled_scene compile_scene(const hittable& world, const point3& origin,
-                                    const std::vector<point_light>& point_lights) {
+RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin,
+                                                       const std::vector<point_light>& point_lights) {
     if (!finite3(origin)) throw scene_error("camera position must be finite, got " + point_text(origin));
     compiled_scene scene;
     scene.origin = origin;
@@ -505,13 +514,15 @@ inline compiled_scene compile_scene(const hittable& world, const point3& origin,
     return scene;
 }
 
-inline compiled_scene compile_scene(const hittable& world, const point3& origin) {
+RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin) {
     return compile_scene(world, origin, {});
 }
 
-inline compiled_material compile_reported_material(const hit_record& rec) {
+RTWEEKEND_ENGINE_FUNCTION compiled_material compile_reported_material(const hit_record& rec) {
     if (!rec.mat) throw scene_error("a user-written hittable reported a hit without a material");
     return compile_material(*rec.mat);
 }
+
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt

@@ -28,6 +28,7 @@
 //     k.bound_where(scene, selected, box)   grows box by the shapes whose material is selected
 //     k.mark_culled(cullable)         back-face culling by material
 //     k.bytes()                       memory held
+//     K::own_walk                     whether a scene of this kind alone gets a walk of its own
 //
 // The order is the kinds' numbers (shape_id), which a leaf reference stores (bvh.h) and which
 // break ties between hits at the same distance (leaf_query.h: beats).
@@ -74,6 +75,14 @@ template <class K>
 typename K::ray_state& state_of(leaf_state& s) { return std::get<kind_index<K, shape_kinds>>(s); }
 template <class K>
 const typename K::ray_state& state_of(const leaf_state& s) { return std::get<kind_index<K, shape_kinds>>(s); }
+
+// The kinds whose scenes are often of them alone (the books' spheres, a mesh's triangles, a box of
+// quads): when every shape of a scene is of one of them, the walk calls its kernel without asking
+// each leaf its kind (K::own_walk). Each costs a walk of its own to compile, so the rare ones share
+// the mixed walk.
+template <class K>
+struct has_own_walk : std::bool_constant<K::own_walk> {};
+using own_walk_kinds = kinds_where<has_own_walk, shape_kinds>;
 
 // Whether kind K has a packet kernel, and whether the BVH may split its shapes.
 template <class K, class = void>

@@ -39,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (loaded.display_encoded) return 0;
     try {
-        const rt::image again = rt::decode_image(rt::detail::encode_pfm(img), "fuzz.pfm").pixels;
+        const rt::image again = rt::decode_image(rt::encode_pfm(img), "fuzz.pfm").pixels;
         if (again.width() != img.width() || again.height() != img.height() ||
             std::memcmp(again.data().data(), img.data().data(), img.data().size() * sizeof(float)) != 0) {
             std::fprintf(stderr, "fuzz: a %s image written as PFM reads back different\n", loaded.format.c_str());

@@ -61,6 +61,8 @@ struct instance_set {
     // Whether its shapes move with the ray's time (an object that moves makes the scene move:
     // compiled_scene::has_motion).
     static constexpr bool moves = false;
+    // Scenes of these alone are rare: they share the walk of mixed scenes (shape_kinds.h).
+    static constexpr bool own_walk = false;
 
     // --- compiling ---------------------------------------------------------------------------
     // An instance as the compiler collects it (scene_compiler::place): which object, and the map

@@ -42,6 +42,8 @@ struct moving_sphere_set {
     static constexpr const char* name = "moving sphere";
     // Whether its shapes move with the ray's time.
     static constexpr bool moves = true;
+    // Scenes of these alone are rare: they share the walk of mixed scenes (shape_kinds.h).
+    static constexpr bool own_walk = false;
 
     // --- compiling ---------------------------------------------------------------------------
     // A moving sphere as the compiler collects it (sphere_set::add): its centre at times 0 and 1,

@@ -31,6 +31,8 @@ struct quad_set {
     static constexpr const char* name = "quad";
     // Whether its shapes move with the ray's time.
     static constexpr bool moves = false;
+    // A scene of these alone walks its BVH without asking each leaf its kind (shape_kinds.h).
+    static constexpr bool own_walk = true;
 
     // --- compiling ---------------------------------------------------------------------------
     // A quad as the compiler collects it: corner relative to the scene origin, and edges, in double.

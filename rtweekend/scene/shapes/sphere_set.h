@@ -36,6 +36,8 @@ struct sphere_set {
     static constexpr const char* name = "sphere";
     // Whether its shapes move with the ray's time.
     static constexpr bool moves = false;
+    // A scene of these alone walks its BVH without asking each leaf its kind (shape_kinds.h).
+    static constexpr bool own_walk = true;
 
     // --- compiling ---------------------------------------------------------------------------
     // A sphere as the compiler collects it: centre relative to the scene origin, in double.

@@ -48,6 +48,8 @@ struct triangle_set {
     static constexpr const char* name = "triangle";
     // Whether its shapes move with the ray's time.
     static constexpr bool moves = false;
+    // A scene of these alone walks its BVH without asking each leaf its kind (shape_kinds.h).
+    static constexpr bool own_walk = true;
 
     // --- compiling ---------------------------------------------------------------------------
     // A triangle as the compiler collects it: its corners relative to the scene origin, rounded

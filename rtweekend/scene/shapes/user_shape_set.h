@@ -38,6 +38,8 @@ struct user_shape_set {
     // Whether its shapes move with the ray's time (a user's hit() may read the ray's time: the
     // scene then calls user code, which draws times anyway).
     static constexpr bool moves = false;
+    // Scenes of these alone are rare: they share the walk of mixed scenes (shape_kinds.h).
+    static constexpr bool own_walk = false;
 
     // --- compiling ---------------------------------------------------------------------------
     // A user's hittable and its box relative to the scene origin, rounded outwards.
