@@ -4,7 +4,7 @@
 //   bench --scene FILE [--width N] [--spp N] [--depth N] [--threads N] [--runs N]
 //       renders the scene file; prints rays, seconds and Mrays/s (median), BVH size, peak memory
 //   bench --mesh FILE.obj --rays FILE.rays [--rays ...] [--threads N] [--runs N]
-//       traces ray files (format: README, "Ray files") against the mesh; one line per file:
+//       traces ray files (format: docs/apps.md, "bench") against the mesh; one line per file:
 //       rays N hits H sum_t S mrays_per_s X          (closest-hit files)
 //       rays N occluded H mrays_per_s X              (any-hit files)
 //   bench --mesh FILE.obj --make-rays PREFIX [--size N]

@@ -1,6 +1,6 @@
-// render: renders a scene file. A text scene (format: README, "Scene files") goes through the
-// path tracer, flags overriding the file's camera settings; a CENG795 XML scene (README,
-// "Whitted mode") goes through the Whitted ray tracer, one image per camera, named by the
+// render: renders a scene file. A text scene (format: docs/scene-files.md) goes through the
+// path tracer, flags overriding the file's camera settings; a CENG795 XML scene (docs/course.md)
+// goes through the Whitted ray tracer, one image per camera, named by the
 // camera's ImageName.
 //
 //   render scene.txt -o scene.png

@@ -9,7 +9,7 @@
 # which way, which calls are hot. Every scene kind trains (spheres, triangles, quads, lights,
 # textures, media, caustics), so none is laid out as cold code. The images stay deterministic
 # for a given build; another build (with or without PGO) may differ in the last bits, as
-# builds for other processors do. The measured gain: README, "Speed"; the cost: README, "Tests".
+# builds for other processors do. The measured gain: docs/speed.md; the cost: docs/testing.md.
 #
 # The counts go next to the instrumented object (g++'s default); a custom command copies them to
 # where the optimised compile of the same source looks for its own (its object's name + .gcda).

@@ -1,5 +1,5 @@
 #pragma once
-// Scene files: the plain-text format of the book-1 cover scene (see README, "Scene files").
+// Scene files: the plain-text format of the book-1 cover scene (see docs/scene-files.md).
 //
 //   scene_description s = load_scene("cover.txt");   // throws scene_error "file:line: problem"
 //   s.cam.render(s.world);

@@ -178,10 +178,10 @@ class adaptive_sampler {
     static constexpr int max_rounds = 64; // a backstop: targets converge in about log2(spp) rounds
     static constexpr double z95 = 1.96;   // the 95 % two-sided normal quantile
     // Neighbours: the 3x3 window. Measured on the cover scene against 5x5: slightly lower error
-    // at equal rays, and no bias either way (see README, "Accuracy").
+    // at equal rays, and no bias either way (see docs/accuracy.md).
     static constexpr int radius = 1;
     // The value below which "relative to the pixel's value" gives way to absolute: 0.3 of white.
-    // The README's RMSE wants no floor (equal weight for every pixel), relMSE one of 0.1; 0.3
+    // docs/accuracy.md's RMSE wants no floor (equal weight for every pixel), relMSE one of 0.1; 0.3
     // keeps most of the gain on both (Neyman's optimum on the cover: 1.35x and 1.29x the rays).
     static constexpr double value_floor = 0.3;
 
