@@ -14,6 +14,7 @@
 // scene: rt::render(cam, scene).
 
 #include "core/constants.h"
+#include "core/engine_linkage.h"
 #include "render/camera_frame.h"
 #include "render/environment.h"
 #include "render/path_tracer.h"
@@ -153,54 +154,7 @@ class camera {
     }
 
     // The ray-generation geometry of the view settings (checked).
-    camera_frame frame() const {
-        check_view();
-        camera_frame f;
-        f.position = lookfrom;
-        f.width = image_width;
-        f.height = height();
-
-        // Determine viewport dimensions.
-        double theta = degrees_to_radians(vfov);
-        double h = std::tan(theta / 2);
-        double viewport_height = 2 * h * focus_dist;
-        double viewport_width = viewport_height * (double(f.width) / f.height);
-
-        // Calculate the u,v,w unit basis vectors for the camera coordinate frame. Only the
-        // directions of lookfrom - lookat and vup matter: they are rescaled first, so that very
-        // long or very short vectors do not overflow or underflow when squared.
-        vec3 w = unit_vector(rescaled(lookfrom - lookat));
-        vec3 u = unit_vector(cross(rescaled(vup), w));
-        vec3 v = cross(w, u);
-
-        // Vectors across the horizontal and down the vertical viewport edges.
-        vec3 viewport_u = viewport_width * u;
-        vec3 viewport_v = viewport_height * -v;
-        vec3 delta_u = viewport_u / f.width;
-        vec3 delta_v = viewport_v / f.height;
-
-        // Location of the upper left pixel, relative to the camera centre.
-        vec3 viewport_upper_left = -(focus_dist * w) - viewport_u / 2 - viewport_v / 2;
-        f.pixel00 = vec3f(viewport_upper_left + 0.5 * (delta_u + delta_v));
-        f.pixel_delta_u = vec3f(delta_u);
-        f.pixel_delta_v = vec3f(delta_v);
-
-        // Calculate the camera defocus disk basis vectors.
-        double defocus_radius = focus_dist * std::tan(degrees_to_radians(defocus_angle / 2));
-
-        // Rays are generated in float as normalize(target - origin), with the target on the focus
-        // plane and the origin on the lens. Its squared length must neither overflow (the farthest
-        // target, a viewport corner, plus the lens radius) nor fall below float's normal range
-        // (the nearest, at focus_dist along the axis, a third of it in one component at least).
-        double reach = viewport_upper_left.length() + defocus_radius;
-        require(reach < 1e18 && focus_dist > 1e-18,
-                "focus_dist, vfov and defocus_angle put the viewport outside the float range rays are made in "
-                "(focus_dist must exceed 1e-18 and the viewport corners lie within 1e18 of lookfrom)");
-        f.defocus_disk_u = vec3f(u * defocus_radius);
-        f.defocus_disk_v = vec3f(v * defocus_radius);
-        f.thin_lens = defocus_angle > 0;
-        return f;
-    }
+    camera_frame frame() const;
 
   private:
     bool older_books_camera_ = false; // made by one of the v3 constructors (get_ray)
@@ -220,38 +174,95 @@ class camera {
         if (!ok) throw scene_error("camera: " + message);
     }
 
-    void check_view() const {
-        constexpr int max_size = 1 << 16;
-        require(image_width >= 1 && image_width <= max_size,
-                "image_width must be between 1 and " + std::to_string(max_size) + ", got " + std::to_string(image_width));
-        require(image_height >= 0 && image_height <= max_size,
-                "image_height must be between 0 (derived) and " + std::to_string(max_size) + ", got " +
-                    std::to_string(image_height));
-        require(image_height > 0 || (std::isfinite(aspect_ratio) && aspect_ratio > 0),
-                "aspect_ratio must be positive and finite, got " + std::to_string(aspect_ratio));
-        require(image_height > 0 || image_width / aspect_ratio <= max_size, "aspect_ratio gives an image taller than " +
-                                                                                std::to_string(max_size) + " pixels");
-        // Each side may be 65536, but not both: the framebuffer is checked before it is allocated.
-        const uint64_t rows = uint64_t(height());
-        require(uint64_t(image_width) * rows <= max_image_pixels,
-                "the image is " + std::to_string(image_width) + "x" + std::to_string(rows) +
-                    " pixels, more than the limit of 268435456 (2^28)");
-        require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
-                "vfov must be between 0 and 180 degrees (exclusive), got " + std::to_string(vfov));
-        require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");
-        const vec3 view = lookfrom - lookat;
-        require(view.x() != 0 || view.y() != 0 || view.z() != 0, "lookfrom and lookat must differ");
-        require(finite3(view), "lookfrom - lookat overflows: the points are too far apart");
-        require(vup.x() != 0 || vup.y() != 0 || vup.z() != 0, "vup must be non-zero");
-        // sin^2 of the angle between vup and the view direction, scale-free.
-        require(cross(unit_vector(rescaled(vup)), unit_vector(rescaled(view))).length_squared() > 1e-20,
-                "vup must not be parallel to the view direction");
-        require(std::isfinite(defocus_angle) && defocus_angle >= 0 && defocus_angle < 180,
-                "defocus_angle must be in [0, 180) degrees, got " + std::to_string(defocus_angle));
-        require(std::isfinite(focus_dist) && focus_dist > 0,
-                "focus_dist must be positive and finite, got " + std::to_string(focus_dist));
-    }
+    void check_view() const;
+
 };
+
+// Left out of a program that links the engine (core/engine_linkage.h): each is long, and a main
+// compiled them again.
+#if RTWEEKEND_ENGINE_BODIES
+RTWEEKEND_ENGINE_FUNCTION camera_frame camera::frame() const {
+    check_view();
+    camera_frame f;
+    f.position = lookfrom;
+    f.width = image_width;
+    f.height = height();
+
+    // Determine viewport dimensions.
+    double theta = degrees_to_radians(vfov);
+    double h = std::tan(theta / 2);
+    double viewport_height = 2 * h * focus_dist;
+    double viewport_width = viewport_height * (double(f.width) / f.height);
+
+    // Calculate the u,v,w unit basis vectors for the camera coordinate frame. Only the
+    // directions of lookfrom - lookat and vup matter: they are rescaled first, so that very
+    // long or very short vectors do not overflow or underflow when squared.
+    vec3 w = unit_vector(rescaled(lookfrom - lookat));
+    vec3 u = unit_vector(cross(rescaled(vup), w));
+    vec3 v = cross(w, u);
+
+    // Vectors across the horizontal and down the vertical viewport edges.
+    vec3 viewport_u = viewport_width * u;
+    vec3 viewport_v = viewport_height * -v;
+    vec3 delta_u = viewport_u / f.width;
+    vec3 delta_v = viewport_v / f.height;
+
+    // Location of the upper left pixel, relative to the camera centre.
+    vec3 viewport_upper_left = -(focus_dist * w) - viewport_u / 2 - viewport_v / 2;
+    f.pixel00 = vec3f(viewport_upper_left + 0.5 * (delta_u + delta_v));
+    f.pixel_delta_u = vec3f(delta_u);
+    f.pixel_delta_v = vec3f(delta_v);
+
+    // Calculate the camera defocus disk basis vectors.
+    double defocus_radius = focus_dist * std::tan(degrees_to_radians(defocus_angle / 2));
+
+    // Rays are generated in float as normalize(target - origin), with the target on the focus
+    // plane and the origin on the lens. Its squared length must neither overflow (the farthest
+    // target, a viewport corner, plus the lens radius) nor fall below float's normal range
+    // (the nearest, at focus_dist along the axis, a third of it in one component at least).
+    double reach = viewport_upper_left.length() + defocus_radius;
+    require(reach < 1e18 && focus_dist > 1e-18,
+            "focus_dist, vfov and defocus_angle put the viewport outside the float range rays are made in "
+            "(focus_dist must exceed 1e-18 and the viewport corners lie within 1e18 of lookfrom)");
+    f.defocus_disk_u = vec3f(u * defocus_radius);
+    f.defocus_disk_v = vec3f(v * defocus_radius);
+    f.thin_lens = defocus_angle > 0;
+    return f;
+}
+
+
+RTWEEKEND_ENGINE_FUNCTION void camera::check_view() const {
+    constexpr int max_size = 1 << 16;
+    require(image_width >= 1 && image_width <= max_size,
+            "image_width must be between 1 and " + std::to_string(max_size) + ", got " + std::to_string(image_width));
+    require(image_height >= 0 && image_height <= max_size,
+            "image_height must be between 0 (derived) and " + std::to_string(max_size) + ", got " +
+                std::to_string(image_height));
+    require(image_height > 0 || (std::isfinite(aspect_ratio) && aspect_ratio > 0),
+            "aspect_ratio must be positive and finite, got " + std::to_string(aspect_ratio));
+    require(image_height > 0 || image_width / aspect_ratio <= max_size, "aspect_ratio gives an image taller than " +
+                                                                            std::to_string(max_size) + " pixels");
+    // Each side may be 65536, but not both: the framebuffer is checked before it is allocated.
+    const uint64_t rows = uint64_t(height());
+    require(uint64_t(image_width) * rows <= max_image_pixels,
+            "the image is " + std::to_string(image_width) + "x" + std::to_string(rows) +
+                " pixels, more than the limit of 268435456 (2^28)");
+    require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
+            "vfov must be between 0 and 180 degrees (exclusive), got " + std::to_string(vfov));
+    require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");
+    const vec3 view = lookfrom - lookat;
+    require(view.x() != 0 || view.y() != 0 || view.z() != 0, "lookfrom and lookat must differ");
+    require(finite3(view), "lookfrom - lookat overflows: the points are too far apart");
+    require(vup.x() != 0 || vup.y() != 0 || vup.z() != 0, "vup must be non-zero");
+    // sin^2 of the angle between vup and the view direction, scale-free.
+    require(cross(unit_vector(rescaled(vup)), unit_vector(rescaled(view))).length_squared() > 1e-20,
+            "vup must not be parallel to the view direction");
+    require(std::isfinite(defocus_angle) && defocus_angle >= 0 && defocus_angle < 180,
+            "defocus_angle must be in [0, 180) degrees, got " + std::to_string(defocus_angle));
+    require(std::isfinite(focus_dist) && focus_dist > 0,
+            "focus_dist must be positive and finite, got " + std::to_string(focus_dist));
+}
+#endif // RTWEEKEND_ENGINE_BODIES
 
 inline ray camera::get_ray(double s, double t) const {
     const double aspect = older_books_camera_ || aspect_ratio != 1.0 ? aspect_ratio : 16.0 / 9.0;

@@ -4,9 +4,10 @@
 // A program that links it is compiled with RTWEEKEND_LINK_ENGINE, which leaves those bodies out of
 // the headers (core/engine_linkage.h), so its own files compile their own code and nothing else:
 // with the headers precompiled, as rtweekend::engine sets up, an edited main rebuilds in seconds
-// (docs/benchmarks.md, "Compile times").
+// (BENCHMARKS.md, section 30).
 //
 // Nothing changes for a program that does not link it: without the macro every header defines its
 // functions inline, as a header-only library does.
 #define RTWEEKEND_ENGINE_TU
 #include "rtweekend.h"
+#include "scene/scene_compiler.h"

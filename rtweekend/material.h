@@ -45,6 +45,7 @@
 // the other into scope (`using material::scatter;`), so it is not hidden.
 
 #include "color.h"
+#include "core/engine_linkage.h"
 #include "core/material_kinds.h"
 #include "core/rng.h"
 #include "core/vec3f.h"
@@ -117,8 +118,14 @@ struct book_uniform {
 // world coordinates. A ray that reaches the back face of absorbing glass has travelled
 // rec.t * |direction| inside it: its weight includes Beer's law for that distance, as the path
 // tracer's does.
-inline bool scatter_through_contract(const compiled_material& m, const ray& r_in, const hit_record& rec,
-                                     color& attenuation, ray& scattered) {
+RTWEEKEND_ENGINE_FUNCTION bool scatter_through_contract(const compiled_material& m, const ray& r_in,
+                                                        const hit_record& rec, color& attenuation, ray& scattered);
+
+// Left out of a program that links the engine (core/engine_linkage.h): the draw instantiates
+// every material kind's sample().
+#if RTWEEKEND_ENGINE_BODIES
+RTWEEKEND_ENGINE_FUNCTION bool scatter_through_contract(const compiled_material& m, const ray& r_in,
+                                                        const hit_record& rec, color& attenuation, ray& scattered) {
     const shading_point sp{vec3f(rec.normal), rec.front_face};
     book_uniform u;
     material_sample s;
@@ -130,6 +137,7 @@ inline bool scatter_through_contract(const compiled_material& m, const ray& r_in
     scattered = ray(rec.p, s.wi.to_double());
     return true;
 }
+#endif
 
 } // namespace detail
 

@@ -30,10 +30,11 @@
 #include "course/whitted_scene.h"
 #include "core/scene_error.h"
 
-// The engine underneath (the compiled scene and its compiler, the integrators), and the file
-// formats. Not included here: image/image_read.h, measure/metrics.h and io/ray_file.h, which serve
-// the measuring tools only.
-#include "scene/scene_compiler.h"
+// The engine underneath (the integrators), and the file formats. Not included here:
+// scene/scene_compiler.h (compile_scene and the compiled scene's definition, for programs that
+// compile a scene once and render it from several cameras: a book main needs neither, and every
+// main that links the engine would pay half a second to parse them), image/image_read.h,
+// measure/metrics.h and io/ray_file.h, which serve the measuring tools only.
 #include "render/path_tracer.h"
 #include "course/whitted.h"
 #include "core/file.h"

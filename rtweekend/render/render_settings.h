@@ -116,36 +116,41 @@ struct render_settings {
     const std::atomic<bool>* stop = nullptr;
 
     // Throws scene_error "<owner>: <problem>" for a setting that cannot be rendered.
-    void check(const std::string& owner = "render settings") const {
-        auto require = [&](bool ok, const std::string& problem) {
-            if (!ok) throw scene_error(owner + ": " + problem);
-        };
-        require(samples_per_pixel >= 1, "samples_per_pixel must be at least 1, got " + std::to_string(samples_per_pixel));
-        require(max_depth >= 1, "max_depth must be at least 1, got " + std::to_string(max_depth));
-        require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
-        require(std::isfinite(adaptive_error) && adaptive_error >= 0,
-                "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
-        require(std::isfinite(caustic_paths) && caustic_paths >= 0 && caustic_paths <= 1024,
-                "caustic_paths must lie in [0, 1024] (light paths per pixel per sample), got " +
-                    std::to_string(caustic_paths));
-        require(adaptive_min_samples >= 2, "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
-                                               std::to_string(adaptive_min_samples));
-        const int end = sample_end();
-        require(first_sample >= 0 && first_sample < end && end <= samples_per_pixel,
-                "the sample range [" + std::to_string(first_sample) + ", " + std::to_string(end) +
-                    ") must be a non-empty part of [0, " + std::to_string(samples_per_pixel) + ")");
-        require(adaptive_error == 0 || (first_sample == 0 && end == samples_per_pixel),
-                "a sample range applies to uniform sampling only (adaptive sampling decides how many samples a "
-                "pixel takes)");
-        require(share == nullptr || (share->ranks >= 1 && share->rank >= 0 && share->rank < share->ranks),
-                "a shared render's rank must lie in [0, ranks)");
-        require(whitted.min_branch_weight >= 0 && whitted.min_branch_weight < 1,
-                "whitted.min_branch_weight must be in [0, 1)");
-    }
+    void check(const std::string& owner = "render settings") const;
 
     // The end of the sample range: end_sample, or samples_per_pixel when it is 0.
     int sample_end() const { return end_sample != 0 ? end_sample : samples_per_pixel; }
     bool whole_sample_range() const { return first_sample == 0 && sample_end() == samples_per_pixel; }
 };
+
+// Left out of a program that links the engine (core/engine_linkage.h).
+#if RTWEEKEND_ENGINE_BODIES
+RTWEEKEND_ENGINE_FUNCTION void render_settings::check(const std::string& owner) const {
+    auto require = [&](bool ok, const std::string& problem) {
+        if (!ok) throw scene_error(owner + ": " + problem);
+    };
+    require(samples_per_pixel >= 1, "samples_per_pixel must be at least 1, got " + std::to_string(samples_per_pixel));
+    require(max_depth >= 1, "max_depth must be at least 1, got " + std::to_string(max_depth));
+    require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
+    require(std::isfinite(adaptive_error) && adaptive_error >= 0,
+            "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
+    require(std::isfinite(caustic_paths) && caustic_paths >= 0 && caustic_paths <= 1024,
+            "caustic_paths must lie in [0, 1024] (light paths per pixel per sample), got " +
+                std::to_string(caustic_paths));
+    require(adaptive_min_samples >= 2, "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
+                                           std::to_string(adaptive_min_samples));
+    const int end = sample_end();
+    require(first_sample >= 0 && first_sample < end && end <= samples_per_pixel,
+            "the sample range [" + std::to_string(first_sample) + ", " + std::to_string(end) +
+                ") must be a non-empty part of [0, " + std::to_string(samples_per_pixel) + ")");
+    require(adaptive_error == 0 || (first_sample == 0 && end == samples_per_pixel),
+            "a sample range applies to uniform sampling only (adaptive sampling decides how many samples a "
+            "pixel takes)");
+    require(share == nullptr || (share->ranks >= 1 && share->rank >= 0 && share->rank < share->ranks),
+            "a shared render's rank must lie in [0, ranks)");
+    require(whitted.min_branch_weight >= 0 && whitted.min_branch_weight < 1,
+            "whitted.min_branch_weight must be in [0, 1)");
+}
+#endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt
