@@ -142,6 +142,10 @@ inline std::string stb_input_problem(const std::string& bytes) {
     int w = 0, h = 0, channels = 0;
     if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &channels))
         return {}; // not an image stb_image knows, or headers it cannot read: decoding says so
+    // A BMP's height is negative when its rows are stored top first (valid, and common from Windows
+    // tools); stb_image's info passes it on as it is, and decodes such files the right way up.
+    const bool bmp = bytes.size() >= 2 && bytes[0] == 'B' && bytes[1] == 'M';
+    if (bmp && h < 0 && h != INT_MIN) h = -h;
     const uint64_t width = uint64_t(w < 0 ? 0 : w), height = uint64_t(h < 0 ? 0 : h);
     problem = image_size_problem(width, height, stb_format_name(bytes));
     if (problem.empty()) problem = image_data_problem(bytes, width, height);

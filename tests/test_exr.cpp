@@ -26,6 +26,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
 #endif
 
 namespace test_exr {
@@ -190,6 +191,57 @@ TEST_CASE("exr.h: half channels, an offset data window and luminance decode to t
         loaded_image back = read_image(path);
         const std::vector<float> expected = {0.7f, 0.7f, 0.7f, 1e6f, 1e6f, 1e6f};
         CHECK(back.pixels.data() == expected);
+    }
+
+    SUBCASE("three channels of which one is used (Y, A, Z in half): Y, the others skipped") {
+        // Three channels, one of them wanted: OpenEXRCore's three-channel fast path wrote through
+        // the null destination of the two skipped ones (compare crashed with SIGSEGV).
+        Imf::Header header(3, 2);
+        for (const char* c : {"Y", "A", "Z"}) header.channels().insert(c, Imf::Channel(Imf::HALF));
+        const std::string path = dir.file("yaz.exr");
+        // 0.75, 0.5, 2, -1, 0.125 and 1024 are exact in half.
+        write_planes(path, header, {{"Y", {0.75f, 0.5f, 2, -1, 0.125f, 1024}}, {"A", {1, 1, 1, 1, 1, 1}},
+                                    {"Z", {3, 4, 5, 6, 7, 8}}});
+        loaded_image back = read_image(path);
+        const std::vector<float> expected = {0.75f, 0.75f, 0.75f, 0.5f, 0.5f, 0.5f, 2, 2, 2,
+                                             -1, -1, -1, 0.125f, 0.125f, 0.125f, 1024, 1024, 1024};
+        CHECK(back.pixels.data() == expected);
+    }
+
+    SUBCASE("R, G, B and three more channels: the colour channels, the others skipped") {
+        Imf::Header header(2, 1);
+        for (const char* c : {"A", "B", "G", "R", "Z", "u"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        const std::string path = dir.file("rgbazu.exr");
+        write_planes(path, header, {{"R", {1, 2}}, {"G", {3, 4}}, {"B", {5, 6}}, {"A", {7, 8}}, {"Z", {9, 10}}, {"u", {11, 12}}});
+        loaded_image back = read_image(path);
+        const std::vector<float> expected = {1, 3, 5, 2, 4, 6};
+        CHECK(back.pixels.data() == expected);
+    }
+
+    SUBCASE("luminance and chroma (Y, RY, BY, as OpenEXR writes them): RGB again") {
+        // OpenEXR's own luminance/chroma writer, chroma at half resolution both ways, a flat
+        // colour: RY = (R - Y) / Y and BY = (B - Y) / Y with Y = 0.2126 R + 0.7152 G + 0.0722 B
+        // (Rec. 709) come back to R, G and B within half's rounding of Y, RY and BY (a few 1e-3).
+        for (const Imf::RgbaChannels mode : {Imf::WRITE_YC, Imf::WRITE_YCA}) {
+            const int w = 6, h = 4;
+            std::vector<Imf::Rgba> pixels(size_t(w * h), Imf::Rgba(0.5f, 0.25f, 0.125f, 1.0f));
+            const std::string path = dir.file(mode == Imf::WRITE_YC ? "yc.exr" : "yca.exr");
+            {
+                Imf::RgbaOutputFile file(path.c_str(), w, h, mode);
+                file.setFrameBuffer(pixels.data(), 1, size_t(w));
+                file.writePixels(h);
+            }
+            loaded_image back = read_image(path);
+            REQUIRE(back.pixels.width() == w);
+            REQUIRE(back.pixels.height() == h);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const color c = back.pixels.pixel(x, y);
+                    CHECK(c.x() == doctest::Approx(0.5).epsilon(0.01));
+                    CHECK(c.y() == doctest::Approx(0.25).epsilon(0.01));
+                    CHECK(c.z() == doctest::Approx(0.125).epsilon(0.01));
+                }
+        }
     }
 
     SUBCASE("no colour channels: refused by name") {

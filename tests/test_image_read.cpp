@@ -123,6 +123,36 @@ TEST_CASE("read_image: every writer round-trips") {
     }
 }
 
+TEST_CASE("read_image: a top-down BMP (negative height) reads as its bottom-up twin") {
+    // 2x3, 24 bits: rows of 2 pixels padded to 8 bytes, stored B, G, R. Top row first: red,
+    // green; then blue, white; then (10, 20, 30), (40, 50, 60).
+    const int pixels[3][2][3] = {{{255, 0, 0}, {0, 255, 0}}, {{0, 0, 255}, {255, 255, 255}}, {{10, 20, 30}, {40, 50, 60}}};
+    auto bmp = [&](bool top_down) {
+        std::string rows;
+        for (int k = 0; k < 3; ++k) {
+            const int y = top_down ? k : 2 - k; // bottom-up files store the last row first
+            for (int x = 0; x < 2; ++x) rows += bytes_of({pixels[y][x][2], pixels[y][x][1], pixels[y][x][0]});
+            rows += bytes_of({0, 0});
+        }
+        const int height = top_down ? -3 : 3;
+        const uint32_t h = uint32_t(height);
+        std::string b = bytes_of({'B', 'M', 54 + 24, 0, 0, 0, 0, 0, 0, 0, 54, 0, 0, 0, // file header
+                                  40, 0, 0, 0, 2, 0, 0, 0});                               // size, width
+        b += bytes_of({int(h & 0xff), int((h >> 8) & 0xff), int((h >> 16) & 0xff), int(h >> 24)});
+        b += bytes_of({1, 0, 24, 0, 0, 0, 0, 0, 24, 0, 0, 0, 0x13, 0x0b, 0, 0, 0x13, 0x0b, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+        return b + rows;
+    };
+    std::vector<float> expected;
+    for (const auto& row : pixels)
+        for (const auto& px : row)
+            for (int c : px) expected.push_back(float(c));
+    const loaded_image bottom_up = decode_image(bmp(false), "bottom_up.bmp");
+    const loaded_image top_down = decode_image(bmp(true), "top_down.bmp");
+    check_pixels(bottom_up.pixels, 2, 3, expected);
+    check_pixels(top_down.pixels, 2, 3, expected);
+    CHECK(top_down.display_encoded);
+}
+
 TEST_CASE("read_image: hand-written PPM files") {
     SUBCASE("P6 with a comment in the header") {
         std::string file = "P6\n# made by hand\n2 1\n255\n" + bytes_of({0, 1, 2, 253, 254, 255});
