@@ -74,9 +74,11 @@ inline std::vector<std::string> xml_output_paths(const rt::whitted_scene& scene,
                                                name + "' " + unsafe));
         std::string path = (dir / name).lexically_normal().string();
         std::string ext = rt::lowercase_extension(path);
-        if (ext != ".png" && ext != ".ppm")
+        // .png and .ppm in the course's 8-bit encoding; .pfm and .exr with the linear radiance
+        // (write_whitted_image), as the course's HDR scenes name theirs.
+        if (ext != ".png" && ext != ".ppm" && ext != ".pfm" && ext != ".exr")
             throw rt::scene_error(scene_path + ": camera " + std::to_string(i + 1) + ": <ImageName> '" + name +
-                                  "' must end in .png or .ppm");
+                                  "' must end in .png, .ppm, .pfm or .exr");
         for (size_t j = 0; j < i; ++j)
             if (paths[j] == path)
                 throw rt::scene_error(scene_path + ": cameras " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +

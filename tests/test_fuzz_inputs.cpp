@@ -735,6 +735,39 @@ TEST_CASE("fuzz: render writes an XML scene's images in the current directory wh
                   {"<ImageName> 'link/escaped.png' resolves to", "outside the output directory"});
 }
 
+TEST_CASE("fuzz: an XML ImageName may end in .pfm or .exr, as render --help says") {
+    // render --help promised .pfm and .exr ImageNames, and render refused them ("must end in .png
+    // or .ppm"). They are written with the linear radiance: read back, the values are the render's.
+    whitted_scene scene = load_xml_scene(fuzz_dir + "facing_mirrors.xml");
+    test::scratch_dir dir("fuzz_hdr_names");
+    for (const std::string name : {"hdr.pfm", "hdr.exr", "plain.png", "plain.ppm"}) {
+        scene.cameras[0].image_name = name;
+        CHECK(app::xml_output_paths(scene, "s.xml", dir.path.string()) ==
+              std::vector<std::string>{(dir.path / name).string()});
+    }
+    scene.cameras[0].image_name = "photo.jpg";
+    check_refused([&] { app::xml_output_paths(scene, "s.xml", dir.path.string()); },
+                  {"<ImageName> 'photo.jpg' must end in .png, .ppm, .pfm or .exr"});
+
+    render_settings settings = whitted_renderer::defaults();
+    settings.threads = 1;
+    settings.quiet = true;
+    const whitted_render r = render_whitted(scene, 0, settings);
+    std::vector<std::string> hdr_names{"hdr.pfm"};
+#if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
+    hdr_names.push_back("hdr.exr");
+#endif
+    for (const std::string& name : hdr_names) {
+        const std::string path = (dir.path / name).string();
+        write_whitted_image(path, r.img);
+        const loaded_image back = read_image(path);
+        CHECK_FALSE(back.display_encoded);
+        REQUIRE(back.pixels.width() == r.img.width());
+        REQUIRE(back.pixels.height() == r.img.height());
+        CHECK(back.pixels.data() == r.img.data());
+    }
+}
+
 TEST_CASE("fuzz: the in-memory entry points read what the file readers read") {
     const std::string data = std::string(RTWEEKEND_TEST_DATA) + "/";
     auto bytes = [&](const std::string& name) { return read_file(data + name, "test file"); };

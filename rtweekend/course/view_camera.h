@@ -21,7 +21,7 @@ struct view_camera {
     double left = -1, right = 1, bottom = -1, top = 1;
     double near_distance = 1;
     int width = 0, height = 0;
-    std::string image_name; // as the file gives it; .png or .ppm
+    std::string image_name; // as the file gives it; .png, .ppm, .pfm or .exr
 };
 
 // The frame of a CENG795 course camera (above): the image plane at near_distance along
