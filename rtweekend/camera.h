@@ -239,7 +239,7 @@ RTWEEKEND_ENGINE_FUNCTION void camera::check_view() const {
             "image_height must be between 0 (derived) and " + std::to_string(max_size) + ", got " +
                 std::to_string(image_height));
     require(image_height > 0 || (std::isfinite(aspect_ratio) && aspect_ratio > 0),
-            "aspect_ratio must be positive and finite, got " + std::to_string(aspect_ratio));
+            "aspect_ratio must be positive and finite, got " + number_text(aspect_ratio));
     require(image_height > 0 || image_width / aspect_ratio <= max_size, "aspect_ratio gives an image taller than " +
                                                                             std::to_string(max_size) + " pixels");
     // Each side may be 65536, but not both: the framebuffer is checked before it is allocated.
@@ -248,7 +248,7 @@ RTWEEKEND_ENGINE_FUNCTION void camera::check_view() const {
             "the image is " + std::to_string(image_width) + "x" + std::to_string(rows) +
                 " pixels, more than the limit of 268435456 (2^28)");
     require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
-            "vfov must be between 0 and 180 degrees (exclusive), got " + std::to_string(vfov));
+            "vfov must be between 0 and 180 degrees (exclusive), got " + number_text(vfov));
     require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");
     const vec3 view = lookfrom - lookat;
     require(view.x() != 0 || view.y() != 0 || view.z() != 0, "lookfrom and lookat must differ");
@@ -258,9 +258,9 @@ RTWEEKEND_ENGINE_FUNCTION void camera::check_view() const {
     require(cross(unit_vector(rescaled(vup)), unit_vector(rescaled(view))).length_squared() > 1e-20,
             "vup must not be parallel to the view direction");
     require(std::isfinite(defocus_angle) && defocus_angle >= 0 && defocus_angle < 180,
-            "defocus_angle must be in [0, 180) degrees, got " + std::to_string(defocus_angle));
+            "defocus_angle must be in [0, 180) degrees, got " + number_text(defocus_angle));
     require(std::isfinite(focus_dist) && focus_dist > 0,
-            "focus_dist must be positive and finite, got " + std::to_string(focus_dist));
+            "focus_dist must be positive and finite, got " + number_text(focus_dist));
 }
 #endif // RTWEEKEND_ENGINE_BODIES
 

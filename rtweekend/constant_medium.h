@@ -102,7 +102,7 @@ inline constant_medium::constant_medium(std::shared_ptr<hittable> boundary, doub
     if (!boundary_) throw scene_error("constant_medium boundary is null");
     if (!tex) throw scene_error("constant_medium texture is null");
     if (!(std::isfinite(density) && density >= 0))
-        throw scene_error("constant_medium density must be finite and non-negative, got " + std::to_string(density));
+        throw scene_error("constant_medium density must be finite and non-negative, got " + number_text(density));
     phase_function_ = std::make_shared<isotropic>(std::move(tex));
     if (is_exactly<sphere>(*boundary_)) boundary_sphere_ = static_cast<const sphere*>(boundary_.get());
 }

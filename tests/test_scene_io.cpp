@@ -235,8 +235,28 @@ TEST_CASE("parse_scene: every malformed line is 'name:LINE: problem'") {
     check_fails("sphere nan 0 -1 0.5 lambertian 0.1 0.2 0.5 0 0\n", 1, {"'nan'", "finite"});
     check_fails("sphere 0 0 -1 inf lambertian 0.1 0.2 0.5 0 0\n", 1, {"'inf'", "finite"});
     check_fails("sphere 0 0 -1 0.5 lambertian 0.1 -infinity 0.5 0 0\n", 1, {"'-infinity'", "finite"});
-    check_fails("sphere 0 0 1e999 0.5 lambertian 0.1 0.2 0.5 0 0\n", 1, {"'1e999'", "finite"});
+    check_fails("sphere 0 0 1e999 0.5 lambertian 0.1 0.2 0.5 0 0\n", 1, {"'1e999'", "beyond the range of a double"});
     check_fails("camera focus_dist NaN\n", 1, {"'NaN'", "finite"});
+
+    // A token quoted in an error is cut to 40 characters and its length given: a 100,000-digit
+    // "number" gave a 100,000-character line.
+    const std::string long_token = std::string(100000, '7') + "x";
+    check_fails("sphere 0 0 -1 " + long_token + " lambertian 0.1 0.2 0.5 0 0\n", 1,
+                {"'7777777777777777777777777777777777777777... (100001 characters)' is not a number"});
+    try {
+        parse("sphere 0 0 -1 " + long_token + " lambertian 0.1 0.2 0.5 0 0\n");
+    } catch (const scene_error& e) {
+        CHECK(std::string(e.what()).size() < 150);
+    }
+    // Numbers in messages: nine significant digits, not std::to_string's six decimals (1e308 came
+    // out as 309 digits and ".000000"; 1e-7 as "0.000000").
+    CHECK(number_text(1e308) == "1e+308");
+    CHECK(number_text(1e-7) == "1e-07");
+    CHECK(number_text(-2.5) == "-2.5");
+    CHECK(number_text(0.1) == "0.1");
+    CHECK(number_text(1.0 / 3.0) == "0.333333333");
+    // An underflow is a number: 1e-320 rounds to a subnormal double, not "not a finite number".
+    CHECK_NOTHROW(parse("sphere 0 0 -1 0.5 lambertian 1e-320 0.2 0.5 0 0\n"));
 
     // Radii.
     check_fails("sphere 0 0 -1 -0.5 lambertian 0.1 0.2 0.5 0 0\n", 1, {"radius", "positive", "-0.5"});

@@ -488,7 +488,7 @@ TEST_CASE("xml scene: a malformed number, or too few or too many") {
     check_xml_error(camera_with("<Position>0 0 0", "<Position>1.0x 0 0"), {"<Camera id=\"1\">: <Position>: '1.0x' is not a number"}, 5);
     check_xml_error(camera_with("<Position>0 0 0", "<Position>0 nan 0"), {"<Position>: 'nan' is not a finite number"});
     check_xml_error(camera_with("<Position>0 0 0", "<Position>0 0 -inf"), {"<Position>: '-inf' is not a finite number"});
-    check_xml_error(camera_with("<Position>0 0 0", "<Position>0 0 1e400"), {"<Position>: '1e400' is not a finite number"});
+    check_xml_error(camera_with("<Position>0 0 0", "<Position>0 0 1e400"), {"<Position>: '1e400' is beyond the range of a double"});
     check_xml_error(camera_with("<Position>0 0 0", "<Position>0 0"), {"<Position> has 2 numbers, expected 3"}, 5);
     check_xml_error(camera_with("<Position>0 0 0", "<Position>0 0 0 1"), {"<Position> has 4 numbers, expected 3"});
     check_xml_error(camera_with("<NearPlane>-1 1 -1 1", "<NearPlane>-1 1 -1 1 5 6"), {"<NearPlane> has 6 numbers, expected 4 or 5"});

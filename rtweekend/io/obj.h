@@ -141,9 +141,9 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
             size_t needed = keyword == "vt" ? 1 : 3, count = 0;
             for (std::string word; line >> word; ++count) {
                 if (!obj_float_fits(word))
-                    fail("'" + word + "' in a '" + keyword + "' line is not a finite number within float's range");
+                    fail("'" + token_text(word) + "' in a '" + keyword + "' line is not a finite number within float's range");
                 if (!obj_number_tame(word))
-                    fail("'" + word + "' in a '" + keyword + "' line has more digits than a number needs (at most 64, " +
+                    fail("'" + token_text(word) + "' in a '" + keyword + "' line has more digits than a number needs (at most 64, " +
                          "and an exponent of at most 300)");
             }
             if (count < needed) fail("a '" + keyword + "' line needs " + std::to_string(needed) + " numbers");
@@ -191,7 +191,7 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
                     const bool vw_joint_fits = keyword != "vw" || stop == part.c_str() || std::fabs(x) < 2147483000.0;
                     if (!obj_int_prefix_fits(part) || (is_number && !(std::fabs(x) <= double(FLT_MAX))) ||
                         !vw_joint_fits || !obj_number_tame(part))
-                        fail("'" + word + "' in a '" + keyword + "' line is out of range (of an int, or of a float)");
+                        fail("'" + token_text(word) + "' in a '" + keyword + "' line is out of range (of an int, or of a float)");
                 }
         }
     }

@@ -186,14 +186,14 @@ class ply_data {
             token(property, begin, end);
             double value;
             if (!parse_ply_number(begin, end, ply_type_is_integer(t), value))
-                fail("'" + std::string(begin, end) + "' (property '" + property + "') is not " +
+                fail("'" + token_text(std::string(begin, end)) + "' (property '" + property + "') is not " +
                      (ply_type_is_integer(t) ? "an integer" : "a number"));
             // Text can say anything; a binary file could only hold what the type holds, and the
             // text must mean the same (a uchar of -70000, or a float of 1e300, is damage).
             if (!std::isfinite(value))
-                fail("'" + std::string(begin, end) + "' (property '" + property + "') is not a finite number");
+                fail("'" + token_text(std::string(begin, end)) + "' (property '" + property + "') is not a finite number");
             if (!fits(t, value))
-                fail("'" + std::string(begin, end) + "' (property '" + property + "') does not fit its type " +
+                fail("'" + token_text(std::string(begin, end)) + "' (property '" + property + "') does not fit its type " +
                      ply_type_name(t) + " (" + ply_type_range(t) + ")");
             return value;
         }

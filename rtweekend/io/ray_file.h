@@ -81,9 +81,9 @@ inline std::string ray_problem(const ray3f& r) {
     if (!is_finite(r.origin)) return "has an infinite origin";
     if (!is_finite(r.dir)) return "has an infinite direction";
     double len = std::sqrt(double(r.dir.x) * r.dir.x + double(r.dir.y) * r.dir.y + double(r.dir.z) * r.dir.z);
-    if (!(std::fabs(len - 1.0) <= 1e-3)) return "has a direction of length " + std::to_string(len) + ", not 1";
-    if (!std::isfinite(r.tmin) || r.tmin < 0) return "has tmin " + std::to_string(r.tmin) + " (must be finite and >= 0)";
-    if (r.tmax < r.tmin) return "has tmax " + std::to_string(r.tmax) + " below tmin " + std::to_string(r.tmin);
+    if (!(std::fabs(len - 1.0) <= 1e-3)) return "has a direction of length " + number_text(len) + ", not 1";
+    if (!std::isfinite(r.tmin) || r.tmin < 0) return "has tmin " + number_text(r.tmin) + " (must be finite and >= 0)";
+    if (r.tmax < r.tmin) return "has tmax " + number_text(r.tmax) + " below tmin " + number_text(r.tmin);
     return {};
 }
 

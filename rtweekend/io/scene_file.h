@@ -157,8 +157,13 @@ class scene_line {
         char* end = nullptr;
         double v = std::strtod(s.c_str(), &end);
         // The whole token, not a prefix: strtod stops at a NUL byte inside it.
-        if (end == s.c_str() || end != s.c_str() + s.size()) fail(std::string(what) + ": '" + s + "' is not a number");
-        if (!std::isfinite(v) || errno == ERANGE) fail(std::string(what) + ": '" + s + "' is not a finite number");
+        if (end == s.c_str() || end != s.c_str() + s.size())
+            fail(std::string(what) + ": '" + token_text(s) + "' is not a number");
+        // ERANGE with a finite result is an underflow (1e-320): the number strtod rounded it to, a
+        // subnormal or zero, is the value; what it is used for says whether it will do.
+        if (std::isinf(v) && errno == ERANGE)
+            fail(std::string(what) + ": '" + token_text(s) + "' is beyond the range of a double");
+        if (!std::isfinite(v)) fail(std::string(what) + ": '" + token_text(s) + "' is not a finite number");
         return v;
     }
 
@@ -167,9 +172,10 @@ class scene_line {
         errno = 0;
         char* end = nullptr;
         long v = std::strtol(s.c_str(), &end, 10);
-        if (end == s.c_str() || end != s.c_str() + s.size()) fail(std::string(what) + ": '" + s + "' is not an integer");
+        if (end == s.c_str() || end != s.c_str() + s.size())
+            fail(std::string(what) + ": '" + token_text(s) + "' is not an integer");
         if (errno == ERANGE || v < min || v > max)
-            fail(std::string(what) + ": " + s + " is out of range (at least " + std::to_string(min) + ", at most " +
+            fail(std::string(what) + ": " + token_text(s) + " is out of range (at least " + std::to_string(min) + ", at most " +
                  std::to_string(max) + ")");
         return static_cast<int>(v);
     }

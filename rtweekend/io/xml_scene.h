@@ -60,6 +60,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -267,10 +268,15 @@ class xml_scene_reader {
         if (b != e && *b == '+') ++b;
         double x = 0;
         auto r = std::from_chars(b, e, x, std::chars_format::general);
-        if (b != e && r.ec == std::errc::result_out_of_range && r.ptr == e) x = HUGE_VAL; // beyond double
-        else if (b == e || r.ec != std::errc() || r.ptr != e)
-            fail(el, owner, tag(el) + ": '" + word + "' is not a number");
-        if (!std::isfinite(x)) fail(el, owner, tag(el) + ": '" + word + "' is not a finite number");
+        if (b != e && r.ec == std::errc::result_out_of_range && r.ptr == e) {
+            // Beyond double's range, or an underflow (1e-320): strtod tells which, and rounds an
+            // underflow to the subnormal or zero that is then the value.
+            x = std::strtod(std::string(b, e).c_str(), nullptr);
+            if (std::isinf(x)) fail(el, owner, tag(el) + ": '" + token_text(word) + "' is beyond the range of a double");
+        } else if (b == e || r.ec != std::errc() || r.ptr != e) {
+            fail(el, owner, tag(el) + ": '" + token_text(word) + "' is not a number");
+        }
+        if (!std::isfinite(x)) fail(el, owner, tag(el) + ": '" + token_text(word) + "' is not a finite number");
         return x;
     }
     long long parse_integer(const std::string& word, node el, const std::string& owner) const {
@@ -280,7 +286,7 @@ class xml_scene_reader {
         long long i = 0;
         auto r = std::from_chars(b, e, i);
         if (b == e || r.ec != std::errc() || r.ptr != e)
-            fail(el, owner, tag(el) + ": '" + word + "' is not a whole number");
+            fail(el, owner, tag(el) + ": '" + token_text(word) + "' is not a whole number");
         return i;
     }
     std::vector<double> numbers(node el, const std::string& owner, size_t min_count, size_t max_count) const {

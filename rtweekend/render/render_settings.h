@@ -133,10 +133,10 @@ RTWEEKEND_ENGINE_FUNCTION void render_settings::check(const std::string& owner) 
     require(max_depth >= 1, "max_depth must be at least 1, got " + std::to_string(max_depth));
     require(threads >= 0, "threads must be 0 (all cores) or more, got " + std::to_string(threads));
     require(std::isfinite(adaptive_error) && adaptive_error >= 0,
-            "adaptive_error must be 0 (off) or positive, got " + std::to_string(adaptive_error));
+            "adaptive_error must be 0 (off) or positive, got " + number_text(adaptive_error));
     require(std::isfinite(caustic_paths) && caustic_paths >= 0 && caustic_paths <= 1024,
             "caustic_paths must lie in [0, 1024] (light paths per pixel per sample), got " +
-                std::to_string(caustic_paths));
+                number_text(caustic_paths));
     require(adaptive_min_samples >= 2, "adaptive_min_samples must be at least 2 (a variance needs two samples), got " +
                                            std::to_string(adaptive_min_samples));
     const int end = sample_end();

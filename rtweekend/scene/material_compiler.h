@@ -34,7 +34,7 @@ namespace detail {
 
 inline void check_refraction_index(double ri, const char* what) {
     if (!(std::isfinite(ri) && ri > 0))
-        throw scene_error(std::string(what) + " must be positive and finite, got " + std::to_string(ri));
+        throw scene_error(std::string(what) + " must be positive and finite, got " + number_text(ri));
 }
 
 inline void check_whitted_material(const whitted_material& w) {
@@ -44,10 +44,10 @@ inline void check_whitted_material(const whitted_material& w) {
     check_color(w.mirror, "mirror reflectance");
     check_color(w.absorption_coefficient, "absorption coefficient");
     if (!(std::isfinite(w.phong_exponent) && w.phong_exponent >= 0))
-        throw scene_error("Phong exponent must be finite and non-negative, got " + std::to_string(w.phong_exponent));
+        throw scene_error("Phong exponent must be finite and non-negative, got " + number_text(w.phong_exponent));
     check_refraction_index(w.refraction_index, "refraction index");
     if (!(std::isfinite(w.absorption_index) && w.absorption_index >= 0))
-        throw scene_error("absorption index must be finite and non-negative, got " + std::to_string(w.absorption_index));
+        throw scene_error("absorption index must be finite and non-negative, got " + number_text(w.absorption_index));
 }
 
 // A material the renderer calls through its virtual functions.
@@ -84,7 +84,7 @@ inline compiled_material compile_book(const diffuse_light& d, texture_table* tex
 }
 inline compiled_material compile_book(const metal& mt, texture_table*) {
     check_color(mt.albedo(), "metal albedo");
-    if (!(mt.fuzz() >= 0)) throw scene_error("metal fuzz must be non-negative, got " + std::to_string(mt.fuzz()));
+    if (!(mt.fuzz() >= 0)) throw scene_error("metal fuzz must be non-negative, got " + number_text(mt.fuzz()));
     return mt.compiled();
 }
 inline compiled_material compile_book(const dielectric& g, texture_table*) {
@@ -117,7 +117,7 @@ inline compiled_material compile_book(const blinn_phong& b, texture_table*) {
     check_color(b.diffuse(), "blinn_phong diffuse colour");
     check_color(b.specular(), "blinn_phong specular colour");
     if (!(std::isfinite(b.exponent()) && b.exponent() >= 0))
-        throw scene_error("blinn_phong exponent must be finite and non-negative, got " + std::to_string(b.exponent()));
+        throw scene_error("blinn_phong exponent must be finite and non-negative, got " + number_text(b.exponent()));
     return b.compiled();
 }
 inline compiled_material compile_book(const whitted_material& w, texture_table*) {

@@ -84,7 +84,7 @@ inline affine_map transform_map(const translate& tr) {
 }
 inline affine_map transform_map(const rotate_y& ro) {
     if (!(std::isfinite(ro.sin_theta()) && std::isfinite(ro.cos_theta())))
-        throw scene_error("rotate_y angle must be finite, got " + std::to_string(ro.angle()));
+        throw scene_error("rotate_y angle must be finite, got " + number_text(ro.angle()));
     return affine_map::rotation_y(ro.sin_theta(), ro.cos_theta());
 }
 inline affine_map transform_map(const transform& tf, const char* problem = "transform matrix must be finite and invertible") {

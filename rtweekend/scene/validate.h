@@ -29,7 +29,7 @@ inline float float_above(double x) { return std::nextafter(static_cast<float>(x)
 
 // "(x, y, z)", for messages.
 inline std::string point_text(const vec3& v) {
-    return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
+    return "(" + number_text(v.x()) + ", " + number_text(v.y()) + ", " + number_text(v.z()) + ")";
 }
 
 // A colour (reflectance, absorption, light intensity) must be finite, non-negative and within

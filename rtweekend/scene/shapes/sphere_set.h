@@ -147,7 +147,7 @@ void sphere_set::add(Compiler& compiler, const sphere& s, const affine_map& xf) 
         throw scene_error("sphere centre must be finite, got " + point_text(s.center()) +
                           (s.is_moving() ? " moving to " + point_text(s.center(1)) : std::string()));
     if (!(std::isfinite(s.radius()) && s.radius() != 0))
-        throw scene_error("sphere radius must be finite and not zero, got " + std::to_string(s.radius()));
+        throw scene_error("sphere radius must be finite and not zero, got " + number_text(s.radius()));
     if (!s.mat()) throw scene_error("sphere at " + point_text(s.center()) + " has no material");
     // A negative radius is the books' v3 hollow glass: the sphere of radius |r|, inside out.
     const bool inside_out = s.radius() < 0;
@@ -156,7 +156,7 @@ void sphere_set::add(Compiler& compiler, const sphere& s, const affine_map& xf) 
     const double radius = std::fabs(s.radius()) * xf.sphere_scale(); // the compiler saw to it that the map keeps it round
     const vec3 c = xf.point(s.center()) - compiler.origin(), c1 = xf.point(s.center(1)) - compiler.origin();
     if (!(fmax_inline(max_abs(c), max_abs(c1)) + radius < max_float_extent))
-        throw scene_error("sphere at " + point_text(s.center()) + " with radius " + std::to_string(s.radius()) +
+        throw scene_error("sphere at " + point_text(s.center()) + " with radius " + number_text(s.radius()) +
                           " is out of single-precision range: its distance from the camera plus its radius must "
                           "be below 1e18");
     if (s.is_moving()) {
