@@ -299,6 +299,32 @@ TEST_CASE("slice file: a missing, truncated, damaged or foreign file is one erro
     check_refused(dir, "bound.pfm", with_field(good, "first_sample", "3"), "beyond what 3 samples can add up to");
 }
 
+TEST_CASE("slice file: the reader takes what the writer writes, refuses the rest in one printable line") {
+    test::scratch_dir dir("odd_slices");
+    const std::string good = encode_slice(hand_slice());
+    auto with_checksum = [](std::string b) {
+        const size_t tail = b.size() - 27;
+        b.replace(tail + 10, 16, hex64(fnv1a64(b.data(), tail)));
+        return b;
+    };
+    // Control characters in a text field: the writer refuses them, so the reader does.
+    check_refused(dir, "cr.pfm", with_field(good, "sampler", "sobol\r"), "the 'sampler' line holds a control character ('sobol\\x0d')");
+    check_refused(dir, "nul.pfm", with_field(good, "settings", std::string("max_depth 4\0hidden", 18)),
+                  "the 'settings' line holds a control character ('max_depth 4\\x00hidden')");
+    sample_slice odd = hand_slice();
+    odd.render.sampler = "sobol\x01";
+    CHECK_THROWS_WITH_AS(encode_slice(odd), "slice sampler 'sobol\\x01' must be printable text on one line", scene_error);
+    // A checksum field holding a line break: the message stays one printable line.
+    std::string broken = good;
+    broken.replace(broken.size() - 9, 1, "\n");
+    check_refused(dir, "checksum.pfm", broken, "checksum");
+    // The image edited and the checksum made right again: the image must be the sums' mean.
+    std::string edited = good;
+    const size_t raster = edited.find('\n', edited.find('\n', edited.find('\n') + 1) + 1) + 1; // after "PF\nW H\nscale\n"
+    edited[raster + 2] ^= 0x01;                                                                 // a float's low bits
+    check_refused(dir, "edited.pfm", with_checksum(edited), "its image is not the mean of its sums");
+}
+
 TEST_CASE("scene fingerprint: the files' contents, not their names or places") {
     test::scratch_dir dir("fingerprint");
     const std::string a = dir.write("a.txt", "sphere 0 0 0 1 lambertian 0.5 0.5 0.5 0 0\n");

@@ -151,10 +151,20 @@ namespace detail {
 
 inline constexpr int slice_version = 1;
 
-// A text field must stay on its line.
+// Whether a text field is printable: no control characters (line breaks, carriage returns, NUL,
+// ...), which the writer refuses and the reader refuses in turn.
+inline bool slice_text_printable(const std::string& value) {
+    for (char c : value) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) return false;
+    }
+    return true;
+}
+
+// A text field must stay on its line, and print as it is in messages.
 inline void check_slice_text(const std::string& field, const std::string& value) {
-    if (value.find_first_of("\n\r") != std::string::npos || value.find('\0') != std::string::npos)
-        throw scene_error("slice " + field + " '" + value + "' must be one line of text");
+    if (!slice_text_printable(value))
+        throw scene_error("slice " + field + " '" + token_text(value) + "' must be printable text on one line");
 }
 
 // Reads the trailer's "key value\n" lines in their fixed order.
@@ -178,15 +188,18 @@ struct slice_reader {
         // A field of a few numbers or words: a line longer than this is garbage.
         if (end - start > 4096) fail(std::string("the '") + key + "' line is too long");
         pos = end + 1;
-        return bytes.substr(start, end - start);
+        std::string value = bytes.substr(start, end - start);
+        if (!slice_text_printable(value))
+            fail(std::string("the '") + key + "' line holds a control character ('" + token_text(value) + "')");
+        return value;
     }
 
     uint64_t number(const char* key, uint64_t max) {
         const std::string text = field(key);
         uint64_t v = 0;
-        if (text.empty() || text.size() > 20) fail(std::string(key) + " '" + text + "' is not a number");
+        if (text.empty() || text.size() > 20) fail(std::string(key) + " '" + token_text(text) + "' is not a number");
         for (char c : text) {
-            if (c < '0' || c > '9') fail(std::string(key) + " '" + text + "' is not a number");
+            if (c < '0' || c > '9') fail(std::string(key) + " '" + token_text(text) + "' is not a number");
             const uint64_t digit = uint64_t(c - '0');
             if (v > (max - digit) / 10) fail(std::string(key) + " " + text + " is larger than " + std::to_string(max));
             v = v * 10 + digit;
@@ -261,7 +274,7 @@ inline sample_slice decode_slice(const std::string& bytes, const std::string& na
     if (version_end == std::string::npos || version_end - in.pos > 16) in.fail("the magic line is cut short");
     const std::string version = bytes.substr(in.pos, version_end - in.pos);
     if (version != std::to_string(detail::slice_version))
-        in.fail("slice format version '" + version + "' is not supported (this program reads version " +
+        in.fail("slice format version '" + token_text(version) + "' is not supported (this program reads version " +
                 std::to_string(detail::slice_version) + ")");
     in.pos = version_end + 1;
 
@@ -274,7 +287,7 @@ inline sample_slice decode_slice(const std::string& bytes, const std::string& na
     const size_t checksum_at = bytes.size() - tail_size;
     const std::string stored = bytes.substr(checksum_at + tail.size(), 16);
     if (stored != hex64(fnv1a64(bytes.data(), checksum_at)))
-        in.fail("checksum mismatch: the file is damaged (stored " + stored + ", computed " +
+        in.fail("checksum mismatch: the file is damaged (stored " + token_text(stored) + ", computed " +
                 hex64(fnv1a64(bytes.data(), checksum_at)) + ")");
 
     sample_slice s;
@@ -321,6 +334,17 @@ inline sample_slice decode_slice(const std::string& bytes, const std::string& na
                     " samples can add up to");
         s.sums[i] = x;
     }
+
+    // The PFM part is the slice's own mean, as the writer makes it: an image edited after the
+    // checksum was recomputed would be merged from the sums and shown by compare from the image.
+    pixel_sums own(r.width, r.height);
+    own.rgb = s.sums;
+    std::fill(own.counts.begin(), own.counts.end(), s.end_sample - s.first_sample);
+    const image expected = mean_image(own);
+    const image stored_image = detail::decode_pfm(bytes.substr(0, layout.raster_end), name).pixels;
+    if (stored_image.data().size() != expected.data().size() ||
+        std::memcmp(stored_image.data().data(), expected.data().data(), expected.data().size() * sizeof(float)) != 0)
+        in.fail("its image is not the mean of its sums (the file was edited)");
     return s;
 }
 
