@@ -218,10 +218,10 @@ TEST_CASE("exr.h: half channels, an offset data window and luminance decode to t
         CHECK(back.pixels.data() == expected);
     }
 
-    SUBCASE("luminance and chroma (Y, RY, BY, as OpenEXR writes them): RGB again") {
-        // OpenEXR's own luminance/chroma writer, chroma at half resolution both ways, a flat
-        // colour: RY = (R - Y) / Y and BY = (B - Y) / Y with Y = 0.2126 R + 0.7152 G + 0.0722 B
-        // (Rec. 709) come back to R, G and B within half's rounding of Y, RY and BY (a few 1e-3).
+    SUBCASE("luminance and chroma (Y, RY, BY, as OpenEXR writes them): refused in one line") {
+        // Chroma at half resolution both ways. OpenEXRCore 3.1 decodes such channels into the
+        // wrong rows, and the C++ reader that would rebuild RGB trusts a header's attribute sizes
+        // (a fuzzed file made it allocate 1.8 GB): refused, saying what to do.
         for (const Imf::RgbaChannels mode : {Imf::WRITE_YC, Imf::WRITE_YCA}) {
             const int w = 6, h = 4;
             std::vector<Imf::Rgba> pixels(size_t(w * h), Imf::Rgba(0.5f, 0.25f, 0.125f, 1.0f));
@@ -231,16 +231,7 @@ TEST_CASE("exr.h: half channels, an offset data window and luminance decode to t
                 file.setFrameBuffer(pixels.data(), 1, size_t(w));
                 file.writePixels(h);
             }
-            loaded_image back = read_image(path);
-            REQUIRE(back.pixels.width() == w);
-            REQUIRE(back.pixels.height() == h);
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x) {
-                    const color c = back.pixels.pixel(x, y);
-                    CHECK(c.x() == doctest::Approx(0.5).epsilon(0.01));
-                    CHECK(c.y() == doctest::Approx(0.25).epsilon(0.01));
-                    CHECK(c.z() == doctest::Approx(0.125).epsilon(0.01));
-                }
+            check_error(path, "is subsampled (2 x 2), as in luminance/chroma images, which are not supported: save the image as RGB");
         }
     }
 

@@ -10,8 +10,8 @@
 //                                  (half would round every value to 11 bits and clip above 65504)
 //   decode_exr(bytes, name)        the linear RGB pixels of an EXR file's first part, as float:
 //                                  R, G and B channels of any pixel type (half, float, uint), or a
-//                                  lone Y channel (luminance) copied to all three, or luminance and
-//                                  subsampled chroma (Y, RY, BY) turned back into RGB by OpenEXR. Other channels
+//                                  lone Y channel (luminance) copied to all three. Subsampled
+//                                  channels (luminance/chroma images) are refused. Other channels
 //                                  (alpha, depth, ...) are ignored. The image is the data window,
 //                                  whatever its origin.
 //
@@ -66,7 +66,6 @@ RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string& bytes, const std::
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/openexr.h>
 
 #include <algorithm>
@@ -155,8 +154,6 @@ inline void exr_core_error(exr_const_context_t ctxt, exr_result_t code, const ch
 struct exr_layout {
     int min_x = 0, min_y = 0, width = 0, height = 0;
     bool grey = false;         // a Y channel without R, G and B
-    bool luma_chroma = false;  // grey, with RY and BY: OpenEXR's luminance/chroma images
-    bool subsampled = false;   // some channel (chroma, or one left unread) has fewer samples than pixels
     bool tiled = false;
     exr_compression_t compression = EXR_COMPRESSION_NONE;
 };
@@ -230,21 +227,22 @@ inline exr_layout check_exr_header(exr_core_reader& exr) {
 
     const exr_attr_chlist_t* channels = nullptr;
     exr.check(exr_get_channels(ctxt, 0, &channels), "header has no channel list");
-    bool r = false, g = false, b = false, y = false, ry = false, by = false, subsampled = false;
+    bool r = false, g = false, b = false, y = false;
     for (int i = 0; channels && i < channels->num_channels; ++i) {
         const exr_attr_chlist_entry_t& c = channels->entries[i];
         const std::string channel(c.name.str ? c.name.str : "", c.name.str ? size_t(c.name.length) : 0);
-        const bool wanted = channel == "R" || channel == "G" || channel == "B" || channel == "Y";
-        if (wanted && (c.x_sampling != 1 || c.y_sampling != 1))
-            exr.fail("channel " + channel + " is subsampled, which is not supported");
-        if (c.x_sampling != 1 || c.y_sampling != 1) subsampled = true;
+        // Subsampled channels (OpenEXR's luminance/chroma images: RY and BY at every second pixel
+        // both ways) are refused: OpenEXRCore 3.1 decodes them into the wrong rows, and the C++
+        // RgbaInputFile, which would rebuild RGB, allocates what a hostile header's attributes
+        // claim before reading them (the fuzzer found 1.8 GB).
+        if (c.x_sampling != 1 || c.y_sampling != 1)
+            exr.fail("channel " + token_text(channel) + " is subsampled (" + std::to_string(c.x_sampling) + " x " +
+                     std::to_string(c.y_sampling) +
+                     "), as in luminance/chroma images, which are not supported: save the image as RGB");
         r |= channel == "R", g |= channel == "G", b |= channel == "B", y |= channel == "Y";
-        ry |= channel == "RY", by |= channel == "BY";
     }
     if (!(r && g && b) && !y) exr.fail("file has neither R, G and B channels nor a Y (luminance) channel");
-    exr_layout layout{dw.min.x, dw.min.y, int(w), int(h), !(r && g && b), false, storage == EXR_STORAGE_TILED};
-    layout.luma_chroma = layout.grey && ry && by;
-    layout.subsampled = subsampled;
+    exr_layout layout{dw.min.x, dw.min.y, int(w), int(h), !(r && g && b), storage == EXR_STORAGE_TILED};
     exr.check(exr_get_compression(ctxt, 0, &layout.compression), "header has no compression");
     return layout;
 }
@@ -301,58 +299,6 @@ RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image& img, const std::st
     }
 }
 
-namespace detail {
-
-// An OpenEXR input stream over bytes in memory.
-class exr_string_istream : public Imf::IStream {
-  public:
-    explicit exr_string_istream(const std::string& bytes) : Imf::IStream("memory"), bytes_(bytes) {}
-    bool read(char c[], int n) override {
-        if (n < 0 || uint64_t(n) > bytes_.size() - at_) throw std::runtime_error("the file ends early");
-        std::memcpy(c, bytes_.data() + at_, size_t(n));
-        at_ += uint64_t(n);
-        return at_ < bytes_.size();
-    }
-    uint64_t tellg() override { return at_; }
-    void seekg(uint64_t pos) override {
-        if (pos > bytes_.size()) throw std::runtime_error("an offset lies past the end of the file");
-        at_ = pos;
-    }
-
-  private:
-    const std::string& bytes_;
-    uint64_t at_ = 0;
-};
-
-// A file with subsampled channels (OpenEXR's luminance/chroma images: Y at every pixel, RY and BY
-// at every second pixel both ways) is read through the library's RGBA interface, which turns
-// luminance and chroma back into RGB with its own filter and the file's chromaticities. Its values
-// are half (as such files store them). OpenEXRCore's decoder, asked for planes of these channels
-// at their own resolution, wrote them at the wrong rows.
-inline image& decode_exr_rgba(const std::string& bytes, const exr_layout& layout, image& out, exr_core_reader& exr) {
-    try {
-        exr_string_istream in(bytes);
-        Imf::RgbaInputFile file(in, 1);
-        std::vector<Imf::Rgba> rgba(size_t(layout.width) * size_t(layout.height));
-        // The frame buffer is addressed by pixel coordinates: its origin is the data window's corner.
-        // (As an address, not pointer arithmetic: the corner may lie far outside the array.)
-        const int64_t corner = int64_t(layout.min_x) + int64_t(layout.min_y) * int64_t(layout.width);
-        Imf::Rgba* origin = reinterpret_cast<Imf::Rgba*>(reinterpret_cast<uintptr_t>(rgba.data()) -
-                                                         uintptr_t(corner) * uintptr_t(sizeof(Imf::Rgba)));
-        file.setFrameBuffer(origin, 1, size_t(layout.width));
-        file.readPixels(layout.min_y, layout.min_y + layout.height - 1);
-        float* q = out.data().data();
-        for (size_t i = 0; i < rgba.size(); ++i) {
-            q[3 * i] = float(rgba[i].r), q[3 * i + 1] = float(rgba[i].g), q[3 * i + 2] = float(rgba[i].b);
-        }
-    } catch (const std::exception& e) {
-        exr.fail(std::string("its subsampled channels cannot be read: ") + e.what());
-    }
-    return out;
-}
-
-} // namespace detail
-
 RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string& bytes, const std::string& name) {
     detail::exr_core_reader exr(bytes, name);
     const detail::exr_layout layout = detail::check_exr_header(exr);
@@ -398,8 +344,6 @@ RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string& bytes, const std::
     }
 
     image out(layout.width, layout.height);
-    if (layout.subsampled) return detail::decode_exr_rgba(bytes, layout, out, exr);
-
     // OpenEXRCore decodes each chunk into planes of float, one a channel (converting half and uint),
     // which are then copied into the image: R, G and B, or Y. Every channel gets a plane of its
     // own, the unused ones too: a channel left without a destination led the library's
