@@ -244,9 +244,9 @@ RTWEEKEND_ENGINE_FUNCTION void camera::check_view() const {
                                                                             std::to_string(max_size) + " pixels");
     // Each side may be 65536, but not both: the framebuffer is checked before it is allocated.
     const uint64_t rows = uint64_t(height());
-    require(uint64_t(image_width) * rows <= max_image_pixels,
+    require(uint64_t(image_width) * rows <= max_render_pixels,
             "the image is " + std::to_string(image_width) + "x" + std::to_string(rows) +
-                " pixels, more than the limit of 268435456 (2^28)");
+                " pixels, more than the limit of 67108864 (2^26) for a render");
     require(std::isfinite(vfov) && vfov > 0 && vfov < 180,
             "vfov must be between 0 and 180 degrees (exclusive), got " + number_text(vfov));
     require(finite3(lookfrom) && finite3(lookat) && finite3(vup), "lookfrom, lookat and vup must be finite");

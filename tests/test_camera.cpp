@@ -360,10 +360,12 @@ TEST_CASE("camera::check rejects invalid settings with scene_error") {
     c.image_width = -5;
     check_rejected(c, "negative width");
     c = good;
-    c.image_width = 65536; // each side allowed, but 2^32 pixels are past the 2^28 limit
+    c.image_width = 65536; // each side allowed, but 2^32 pixels are past the 2^26 limit of a render
     c.image_height = 65536;
     check_rejected(c, "65536 x 65536");
-    c.image_height = 4096; // 2^28 exactly: allowed
+    c.image_height = 1025; // 2^26 + 65536 pixels
+    check_rejected(c, "65536 x 1025");
+    c.image_height = 1024; // 2^26 exactly: allowed
     CHECK_NOTHROW(c.check());
     c = good;
     c.samples_per_pixel = 0;

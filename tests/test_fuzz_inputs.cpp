@@ -183,8 +183,10 @@ TEST_CASE("fuzz: scene files: NUL bytes, nothing to render, a device as a mesh, 
     test::scratch_dir dir("fuzz_scenes");
     const std::string sphere = "sphere 0 0 -1 0.5 lambertian 0.5 0.5 0.5 0 0\n";
     check_refused([&] { load_scene(dir.write("big.txt", "camera image_width 65536\ncamera aspect_ratio 1\n" + sphere)); },
-                  {"big.txt: the image", "65536x65536 = 4294967296 pixels", "limit of 268435456 (2^28) pixels"});
-    CHECK_NOTHROW(load_scene(dir.write("ok.txt", "camera image_width 16384\ncamera image_height 16384\n" + sphere)));
+                  {"big.txt: the image", "65536x65536 = 4294967296 pixels", "limit of 67108864 (2^26) pixels for a render"});
+    check_refused([&] { load_scene(dir.write("big2.txt", "camera image_width 8192\ncamera image_height 8193\n" + sphere)); },
+                  {"big2.txt: the image", "8192x8193 = 67117056 pixels", "limit of 67108864 (2^26) pixels for a render"});
+    CHECK_NOTHROW(load_scene(dir.write("ok.txt", "camera image_width 8192\ncamera image_height 8192\n" + sphere)));
     // The same limits as render's --spp and --depth.
     check_refused([&] { load_scene(dir.write("spp.txt", "camera samples_per_pixel 16777217\n" + sphere)); },
                   {"samples_per_pixel", "at most 16777216"});
@@ -283,7 +285,7 @@ TEST_CASE("fuzz: XML NUL bytes and resolutions beyond the pixel limit") {
     std::string big = text;
     big.replace(big.find("<ImageResolution>1 1<"), 21, "<ImageResolution>1000000 1000000<");
     check_refused([&] { load_xml_scene(dir.write("big.xml", big)); },
-                  {"<ImageResolution> 1000000 1000000 is 1000000000000 pixels, more than the limit of 268435456"});
+                  {"<ImageResolution> 1000000 1000000 is 1000000000000 pixels, more than the limit of 67108864 (2^26) pixels for a render"});
 }
 
 // --- 7. the libFuzzer harnesses (tests/fuzz) --------------------------------------------------------

@@ -323,6 +323,13 @@ TEST_CASE("slice file: the reader takes what the writer writes, refuses the rest
     const size_t raster = edited.find('\n', edited.find('\n', edited.find('\n') + 1) + 1) + 1; // after "PF\nW H\nscale\n"
     edited[raster + 2] ^= 0x01;                                                                 // a float's low bits
     check_refused(dir, "edited.pfm", with_checksum(edited), "its image is not the mean of its sums");
+    // A slice larger than a render may be: refused before its sums are looked at.
+    sample_slice huge = hand_slice();
+    huge.render.width = 8192;
+    huge.render.height = 8193;
+    CHECK_THROWS_WITH_AS(encode_slice(huge),
+                         "slice is 8192x8193 = 67117056 pixels, more than the limit of 67108864 (2^26) pixels for a render",
+                         scene_error);
 }
 
 TEST_CASE("scene fingerprint: the files' contents, not their names or places") {

@@ -397,7 +397,7 @@ RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_
         throw scene_error("image resolution must be positive, got " + std::to_string(c.width) + "x" +
                           std::to_string(c.height));
     // The loader checks this too; a scene built in code reaches here unchecked.
-    check_image_size(uint64_t(c.width), uint64_t(c.height), "camera " + std::to_string(camera_index) + "'s image");
+    check_render_size(uint64_t(c.width), uint64_t(c.height), "camera " + std::to_string(camera_index) + "'s image");
     if (!finite3(c.position) || !finite3(c.gaze) || !finite3(c.up) ||
         !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
         throw scene_error("camera settings must be finite numbers");

@@ -94,14 +94,14 @@ struct scene_description {
 // (no directives)", as load_scene refuses an empty file.
 RTWEEKEND_ENGINE_FUNCTION scene_description parse_scene(std::istream& in, const std::string& name);
 
-// Throws scene_error unless the image `cam` would render is within max_image_pixels
+// Throws scene_error unless the image `cam` would render is within max_render_pixels
 // (core/input_limits.h): "the image is WxH = N pixels, more than the limit of ...". A side beyond
 // 65536 pixels, or an aspect ratio that is not positive, is left to the camera's own check.
 RTWEEKEND_ENGINE_FUNCTION void check_camera_image_size(const camera& cam);
 
 // Reads a scene file. Besides parse_scene's checks (an empty file, or one of only comments, is
 // refused there), refuses a file that places no object in the world: it would render nothing but
-// the sky. And refuses an image larger than max_image_pixels (core/input_limits.h), before anything
+// the sky. And refuses an image larger than max_render_pixels (core/input_limits.h), before anything
 // is allocated.
 RTWEEKEND_ENGINE_FUNCTION scene_description load_scene(const std::string& path);
 
@@ -605,7 +605,7 @@ RTWEEKEND_ENGINE_FUNCTION void check_camera_image_size(const camera& c) {
     // In double, as the camera derives it: a tiny aspect ratio must not overflow an int here.
     const double h = c.image_height > 0 ? double(c.image_height) : std::max(1.0, std::floor(c.image_width / c.aspect_ratio));
     if (c.image_width <= 65536 && h <= 65536)
-        check_image_size(uint64_t(c.image_width), uint64_t(h), "the image (camera image_width, image_height, aspect_ratio)");
+        check_render_size(uint64_t(c.image_width), uint64_t(h), "the image (camera image_width, image_height, aspect_ratio)");
 }
 
 RTWEEKEND_ENGINE_FUNCTION scene_description load_scene(const std::string& path) { return decode_scene(read_file(path,

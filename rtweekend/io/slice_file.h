@@ -217,7 +217,7 @@ inline std::string slice_range_text(int first, int end) {
 inline std::string encode_slice(const sample_slice& s) {
     const slice_render& r = s.render;
     if (r.width < 1 || r.height < 1) throw scene_error("slice has no pixels");
-    check_image_size(uint64_t(r.width), uint64_t(r.height), "slice");
+    check_render_size(uint64_t(r.width), uint64_t(r.height), "slice");
     if (!(0 <= s.first_sample && s.first_sample < s.end_sample && s.end_sample <= r.samples_per_pixel))
         throw scene_error("slice range [" + std::to_string(s.first_sample) + ", " + std::to_string(s.end_sample) +
                           ") is not a non-empty part of [0, " + std::to_string(r.samples_per_pixel) + ")");
@@ -296,6 +296,9 @@ inline sample_slice decode_slice(const std::string& bytes, const std::string& na
     if (w != layout.width || h != layout.height)
         in.fail("the trailer says " + std::to_string(w) + "x" + std::to_string(h) + ", the PFM header " +
                 std::to_string(layout.width) + "x" + std::to_string(layout.height));
+    if (w * h > max_render_pixels)
+        in.fail("it is " + std::to_string(w) + "x" + std::to_string(h) + " pixels, more than the limit of " +
+                std::to_string(max_render_pixels) + " (2^26) pixels for a render");
     if (layout.channels != 3) in.fail("a slice's PFM holds colour ('PF'), not grey");
     r.width = int(w);
     r.height = int(h);

@@ -435,11 +435,11 @@ class xml_scene_reader {
                 if (wh[0] <= 0 || wh[1] <= 0 || wh[0] > 1000000 || wh[1] > 1000000)
                     fail(res, owner, "<ImageResolution> " + std::to_string(wh[0]) + " " + std::to_string(wh[1]) +
                                          ": width and height must be between 1 and 1000000");
-                if (uint64_t(wh[0]) * uint64_t(wh[1]) > max_image_pixels)
+                if (uint64_t(wh[0]) * uint64_t(wh[1]) > max_render_pixels)
                     fail(res, owner, "<ImageResolution> " + std::to_string(wh[0]) + " " + std::to_string(wh[1]) + " is " +
                                          std::to_string(uint64_t(wh[0]) * uint64_t(wh[1])) +
-                                         " pixels, more than the limit of " + std::to_string(max_image_pixels) +
-                                         " (2^28) pixels");
+                                         " pixels, more than the limit of " + std::to_string(max_render_pixels) +
+                                         " (2^26) pixels for a render");
                 cam.width = int(wh[0]);
                 cam.height = int(wh[1]);
                 node name = child(c, "ImageName", true);
