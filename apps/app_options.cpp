@@ -53,7 +53,7 @@ bool is_xml_scene(const std::string& path) {
     if (dot == std::string::npos) return false;
     std::string ext = path.substr(dot);
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext == ".xml";
+    return ext == ".xml" || ext == ".json"; // the course's JSON form reads as its XML
 }
 
 void print_usage(const description& d, std::FILE* to) {
@@ -91,8 +91,8 @@ void print_usage(const description& d, std::FILE* to) {
                      "               render's image (text scenes, uniform sampling)\n");
     if (d.xml_scenes)
         std::fprintf(to,
-                     "For a CENG795 XML scene (.xml), every camera is rendered with the Whitted ray tracer to its\n"
-                     "ImageName (.png, .ppm, .pfm or .exr), only --threads, --quiet and these apply:\n"
+                     "For a CENG795 scene (.xml, or the course's JSON form, .json), every camera is rendered with the\n"
+                     "Whitted ray tracer to its ImageName (.png, .ppm, .pfm or .exr), only --threads, --quiet and these apply:\n"
                      "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
                      "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
                      "  --integrator path\n"

@@ -43,7 +43,7 @@ namespace app {
 inline description render_description() {
     description d{"render", "Renders a scene file: a text scene with the path tracer, or a CENG795 XML scene "
                             "with the Whitted ray tracer.",
-                  "SCENE.txt|SCENE.xml", 1, 1};
+                  "SCENE.txt|SCENE.xml|SCENE.json", 1, 1};
     d.xml_scenes = true;
     d.slices = true;
     return d;
@@ -251,6 +251,7 @@ inline rt::whitted_scene read_xml_scene(const options& opt) {
     const std::string& scene_path = opt.positional[0];
     rt::whitted_scene scene = rt::load_xml_scene(scene_path);
     if (scene.cameras.empty()) throw rt::scene_error(scene_path + ": the scene has no <Camera>: nothing to render");
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "render: warning: %s\n", w.c_str());
     return scene;
 }
 

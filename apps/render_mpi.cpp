@@ -99,6 +99,8 @@ void render_text(MPI_Comm comm, const app::options& opt, int rank) {
 void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
     const std::string& scene_path = opt.positional[0];
     const rt::whitted_scene scene = rt::mpi::together(comm, [&] { return rt::load_xml_scene(scene_path); });
+    if (rank == 0)
+        for (const std::string& w : scene.warnings) std::fprintf(stderr, "render_mpi: warning: %s\n", w.c_str());
     std::signal(SIGINT, SIG_DFL);
     const std::string fingerprint = rt::mpi::together(comm, [&] { return rt::scene_fingerprint(scene.files); });
     rt::mpi::require_same(comm, fingerprint, "scene (the contents of its files)");
@@ -149,7 +151,7 @@ int main(int argc, char** argv) {
     app::description d{"render_mpi",
                        "Renders a scene file over MPI ranks: a text scene with the path tracer, or a CENG795 XML "
                        "scene with the Whitted ray tracer; the same image as render.",
-                       "SCENE.txt|SCENE.xml", 1, 1};
+                       "SCENE.txt|SCENE.xml|SCENE.json", 1, 1};
     d.xml_scenes = true;
     d.slices = true;
     d.check_output = false; // rank 0's to check, agreed with the others (render_text, render_xml)

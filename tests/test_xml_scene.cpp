@@ -310,12 +310,13 @@ TEST_CASE("xml scene: comments, CRLF, one line and element order do not change t
                             section("Lights") + "<MaxRecursionDepth>6</MaxRecursionDepth>" + section("Cameras") +
                             "<ShadowRayEpsilon>0.01</ShadowRayEpsilon><BackgroundColor>10 20 30</BackgroundColor>"
                             "</Scene>";
-    // Later-level elements are ignored.
+    // Later-level elements not read yet change nothing (each is a warning: test_course_scene.cpp),
+    // nor do transformations no object names.
     std::string later = pretty;
     later.replace(later.find("<Objects>"), 9,
                   "<Transformations><Translation id=\"1\">1 2 3</Translation></Transformations>"
                   "<Textures><Images><Image id=\"1\">x.jpg</Image></Images></Textures><Objects>"
-                  "<MeshInstance id=\"9\" baseMeshId=\"1\"><Transformations>t1</Transformations></MeshInstance>");
+                  "<LightSphere id=\"9\"><Material>1</Material><Transformations>t1</Transformations></LightSphere>");
     later.replace(later.find("<PointLight id=\"1\">"), 19,
                   "<AreaLight id=\"5\"><Position>0 0 0</Position></AreaLight><PointLight id=\"1\">");
 

@@ -22,12 +22,15 @@ struct view_camera {
     double near_distance = 1;
     int width = 0, height = 0;
     std::string image_name; // as the file gives it; .png, .ppm, .pfm or .exr
+    // handedness="left": u = w x up instead of up x w, the image mirrored left to right (v as before).
+    bool left_handed = false;
 };
 
 // The frame of a CENG795 course camera (above): the image plane at near_distance along
 // the gaze, spanning [left, right] x [bottom, top]; pixel (i, j), j = 0 the top row, centred at
 // e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v, with w = -gaze,
-// u = unit(up x w), v = w x u. Throws scene_error for settings that make no image.
+// u = unit(up x w), v = w x u (a left-handed camera then turns u round: u = unit(w x up)).
+// Throws scene_error for settings that make no image.
 inline camera_frame view_camera_frame(const view_camera& c) {
     auto finite = [](const vec3& a) { return std::isfinite(a.x()) && std::isfinite(a.y()) && std::isfinite(a.z()); };
     if (c.width <= 0 || c.height <= 0 || c.width > (1 << 16) || c.height > (1 << 16))
@@ -37,8 +40,9 @@ inline camera_frame view_camera_frame(const view_camera& c) {
         !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
         throw scene_error("camera settings must be finite numbers");
     const vec3 w = -unit_vector(c.gaze);
-    const vec3 u = unit_vector(cross(c.up, w));
-    const vec3 v = cross(w, u);
+    const vec3 right_u = unit_vector(cross(c.up, w));
+    const vec3 v = cross(w, right_u);
+    const vec3 u = c.left_handed ? -right_u : right_u;
     if (!finite(u) || !finite(w)) throw scene_error("camera gaze and up must be non-zero and not parallel");
     const vec3 du = (c.right - c.left) / c.width * u, dv = -(c.top - c.bottom) / c.height * v;
     camera_frame f;

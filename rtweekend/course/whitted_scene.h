@@ -38,6 +38,9 @@ struct whitted_scene {
     // for a scene built in code. A fingerprint of the scene hashes them (render_mpi's ranks check
     // that they all read the same scene).
     std::vector<std::string> files;
+    // What the reader could not honour but the scene still renders without: an element it does not
+    // read, one line each ("scene.xml:12: <NumSamples> is not supported yet and is ignored").
+    std::vector<std::string> warnings;
 };
 
 } // namespace rt
