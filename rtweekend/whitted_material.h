@@ -37,6 +37,10 @@ class whitted_material : public material {
     double refraction_index = 1;  // conductor and dielectric
     double absorption_index = 0;  // k: conductor
     color absorption_coefficient{0, 0, 0}; // c per unit length: dielectric (Beer's law)
+    // Roughness (homework 3): the Whitted integrator tilts each mirror, conductor or dielectric ray
+    // d to normalize(d + roughness (xi1 u + xi2 v)), xi uniform in [-1/2, 1/2) and u, v unit and
+    // perpendicular to d (course/whitted.h). 0: the ideal ray. The path tracer ignores it.
+    double roughness = 0;
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);

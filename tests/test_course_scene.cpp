@@ -221,13 +221,13 @@ TEST_CASE("course scene: every element and attribute not read is one warning nam
                                  "<Sphere id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Center>1</Center>"
                                  "<Radius>1</Radius>\n<MotionBlur>0 0 1</MotionBlur></Sphere>\n"
                                  "<LightSphere id=\"2\"><Radiance>1 1 1</Radiance></LightSphere>");
-    text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<NumSamples>4</NumSamples>");
+    text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Tonemap>x</Tonemap>");
     whitted_scene s = load_text(text, "warn.xml");
     REQUIRE(s.warnings.size() == 4);
-    // Line 3: <NumSamples> (the camera then ends on line 7; lights, materials, transformations
+    // Line 3: <Tonemap> (the camera then ends on line 7; lights, materials, transformations
     // and vertices take a line each); line 12: the sphere's attribute (not read on spheres), line
     // 13 its <MotionBlur>; line 14: the light sphere, whose children are not looked at.
-    CHECK(s.warnings[0].find("warn.xml:3: <NumSamples> is not supported yet and is ignored") != std::string::npos);
+    CHECK(s.warnings[0].find("warn.xml:3: <Tonemap> is not supported yet and is ignored") != std::string::npos);
     CHECK(s.warnings[1].find("warn.xml:12: <Sphere id=\"1\">: attribute shadingMode=\"smooth\" is not supported yet") !=
           std::string::npos);
     CHECK(s.warnings[2].find("warn.xml:13: <MotionBlur> is not supported yet") != std::string::npos);
@@ -326,6 +326,173 @@ TEST_CASE("course scene: the JSON form reads as its XML twin and renders the sam
     for (int i = 0; i < 100; ++i) deep += "{\"A\": ";
     deep += "\"1\"" + std::string(101, '}');
     CHECK(error_of(deep, "deep.json").find("nested more than 64 levels deep") != std::string::npos);
+}
+
+namespace {
+
+// A floor (y = 0, 200 x 200, white: kd = 1, no ambient term) seen straight down from (0, 20, 0)
+// through a 2x2 near plane at distance 1, n x n pixels, lit by `lights`; `camera_extra` goes
+// inside the camera. Pixel (i, j)'s centre ray meets the floor at (20 a, 0, -20 b), with
+// a = -1 + (i + 0.5) 2/n and b = 1 - (j + 0.5) 2/n (u = up x w = +x, v = w x u = -z).
+image render_floor(const std::string& lights, int n, const std::string& camera_extra = "") {
+    const std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>0 20 0</Position><Gaze>0 -1 0</Gaze>"
+                             "<Up>0 0 -1</Up><NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance>"
+                             "<ImageResolution>" + std::to_string(n) + " " + std::to_string(n) +
+                             "</ImageResolution><ImageName>f.png</ImageName>" + camera_extra + "</Camera></Cameras>"
+                             "<Lights>" + lights + "</Lights>"
+                             "<Materials><Material id=\"1\"><DiffuseReflectance>1 1 1</DiffuseReflectance></Material></Materials>"
+                             "<VertexData>-100 0 -100  100 0 -100  100 0 100  -100 0 100</VertexData>"
+                             "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 3 2  1 4 3</Faces></Mesh></Objects></Scene>";
+    return render_whitted(load_text(text), 0).img;
+}
+
+point3 floor_point(int i, int j, int n) {
+    const double a = -1 + (i + 0.5) * 2 / n, b = 1 - (j + 0.5) * 2 / n;
+    return point3(20 * a, 0, -20 * b);
+}
+
+} // namespace
+
+TEST_CASE("course scene: a directional light lights the floor without fall-off, shadowed from any distance") {
+    // Direction (1, -0.8, -1), radiance 200: towards the light l = (-1, 0.8, 1) / |...|, so on the
+    // floor n.l = 0.8 / sqrt(2.64) and every pixel is 200 * 1 * 0.8 / sqrt(2.64) = 98.4652...
+    const std::string light = "<DirectionalLight id=\"1\"><Direction>1 -0.8 -1</Direction><Radiance>200 200 200</Radiance>"
+                              "</DirectionalLight>";
+    const image img = render_floor(light, 9);
+    const double expected = 200 * 0.8 / std::sqrt(2.64);
+    for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 9; ++i) CHECK(img.pixel(i, j).x() == doctest::Approx(expected).epsilon(1e-5));
+    // A blocker 1000 units towards the light from the floor's centre shadows the centre pixel only.
+    const std::string far = "<DirectionalLight id=\"1\"><Direction>0 -1 0</Direction><Radiance>50 50 50</Radiance>"
+                            "</DirectionalLight>";
+    std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>0 20 0</Position><Gaze>0 -1 0</Gaze><Up>0 0 -1</Up>"
+                       "<NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance><ImageResolution>9 9</ImageResolution>"
+                       "<ImageName>f.png</ImageName></Camera></Cameras><Lights>" + far + "</Lights>"
+                       "<Materials><Material id=\"1\"><DiffuseReflectance>1 1 1</DiffuseReflectance></Material></Materials>"
+                       "<VertexData>-100 0 -100  100 0 -100  100 0 100  -100 0 100  -1 1000 -1  1 1000 -1  0 1000 1</VertexData>"
+                       "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 3 2  1 4 3  5 7 6</Faces></Mesh></Objects></Scene>";
+    const image shadowed = render_whitted(load_text(text), 0).img;
+    CHECK(shadowed.pixel(4, 4).x() == 0.0f); // the floor point (0, 0, 0): the blocker is straight above
+    CHECK(shadowed.pixel(0, 0).x() == doctest::Approx(50).epsilon(1e-6));
+}
+
+TEST_CASE("course scene: a spot light's fall-off between half its falloff and half its coverage angle") {
+    // At (0, 10, 0) pointing down, I = 1000, coverage 60 and falloff 30 degrees (full angles). A
+    // floor point at distance r sees it at alpha from the axis, cos alpha = 10 / r = n.l:
+    // E = I s / r^2, s = 1 for alpha <= 15, ((cos alpha - cos 30) / (cos 15 - cos 30))^4 up to 30,
+    // 0 beyond; the pixel is E cos alpha (kd = 1).
+    const std::string light = "<SpotLight id=\"1\"><Position>0 10 0</Position><Direction>0 -1 0</Direction>"
+                              "<Intensity>1000 1000 1000</Intensity><CoverageAngle>60</CoverageAngle>"
+                              "<FalloffAngle>30</FalloffAngle></SpotLight>";
+    const int n = 41;
+    const image img = render_floor(light, n);
+    const double pi = 3.14159265358979323846;
+    int inner = 0, ring = 0, dark = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const point3 x = floor_point(i, j, n);
+            const double r2 = 100 + x.x() * x.x() + x.z() * x.z(), r = std::sqrt(r2), cos_a = 10 / r;
+            const double alpha = std::acos(cos_a) * 180 / pi;
+            double s = 0;
+            if (alpha <= 15) s = 1;
+            else if (alpha <= 30) s = std::pow((cos_a - std::cos(pi / 6)) / (std::cos(pi / 12) - std::cos(pi / 6)), 4);
+            const double expected = 1000 * s / r2 * cos_a;
+            CAPTURE(i);
+            CAPTURE(j);
+            CHECK(img.pixel(i, j).x() == doctest::Approx(expected).epsilon(1e-4).scale(1e-3));
+            (alpha <= 15 ? inner : alpha <= 30 ? ring : dark)++;
+        }
+    CHECK(inner > 0);
+    CHECK(ring > 0);
+    CHECK(dark > 0);
+    CHECK(img.pixel(n / 2, n / 2).x() == doctest::Approx(10).epsilon(1e-5)); // straight below: 1000 / 100
+}
+
+TEST_CASE("course scene: an area light is two-sided: L A |n_l . w_i| / d^2") {
+    // A 0.01-wide square at height 5 facing up (away from the floor) of radiance 10^6: L A = 100.
+    // A floor point at distance d sees it with |n_l . w_i| = 5 / d and n.l = 5 / d, so the pixel is
+    // 100 (5 / d)^2 / d^2 (within the light's width: 0.2 % here). The light is invisible: the centre
+    // pixel's ray passes through its centre and sees the floor, 100 / 25.
+    const std::string light = "<AreaLight id=\"1\"><Position>0 5 0</Position><Normal>0 1 0</Normal><Size>0.01</Size>"
+                              "<Radiance>1000000 1000000 1000000</Radiance></AreaLight>";
+    const int n = 11;
+    const image img = render_floor(light, n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const point3 x = floor_point(i, j, n);
+            const double d2 = 25 + x.x() * x.x() + x.z() * x.z();
+            CHECK(img.pixel(i, j).x() == doctest::Approx(100 * 25 / d2 / d2).epsilon(2e-3));
+        }
+}
+
+TEST_CASE("course scene: NumSamples jitters inside the pixel and averages, the lens keeps the focal plane sharp") {
+    // A wall at z = -10 (ambient only: ka 1, Ia 100) seen from the origin through a 2x2 near plane
+    // at distance 10, 4x4 pixels: at the wall's depth pixel column 2 spans x in [0, 0.5], and the
+    // wall's left edge x = 0.125 is a quarter of the way in. With 16 samples on a 4x4 grid, the 3
+    // columns of cells right of the edge hit and 1 misses: the pixel is exactly 75 (and exactly 75
+    // again through a lens focused on the wall, every ray of a sample meeting the same point).
+    auto render_wall = [](const std::string& extra, double wall_z) {
+        const std::string z = std::to_string(wall_z);
+        std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+                           "<NearPlane>-1 1 -1 1</NearPlane><NearDistance>10</NearDistance><ImageResolution>4 4</ImageResolution>"
+                           "<ImageName>w.png</ImageName>" + extra + "</Camera></Cameras><Lights><AmbientLight>100 100 100</AmbientLight></Lights>"
+                           "<Materials><Material id=\"1\"><AmbientReflectance>1 1 1</AmbientReflectance></Material></Materials>"
+                           "<VertexData>0.125 -50 " + z + "  50 -50 " + z + "  50 50 " + z + "  0.125 50 " + z + "</VertexData>"
+                           "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3  1 3 4</Faces></Mesh></Objects></Scene>";
+        return render_whitted(load_text(text), 0).img;
+    };
+    const image pinhole = render_wall("", -10), jittered = render_wall("<NumSamples>16</NumSamples>", -10);
+    CHECK(pinhole.pixel(2, 1).x() == 100.0f); // its centre (x = 0.25) is right of the edge
+    CHECK(jittered.pixel(1, 1).x() == 0.0f);
+    CHECK(jittered.pixel(2, 1).x() == doctest::Approx(75).epsilon(1e-6));
+    CHECK(jittered.pixel(3, 1).x() == 100.0f);
+    const image focused = render_wall("<NumSamples>16</NumSamples><ApertureSize>2</ApertureSize><FocusDistance>10</FocusDistance>", -10);
+    CHECK(focused.pixel(2, 1).x() == doctest::Approx(75).epsilon(1e-6));
+    CHECK(focused.pixel(1, 1).x() == 0.0f);
+    // Focused at 10 but the wall at 5 (its edge still at x = 0.125, now a quarter of a pixel
+    // that covers [0, 0.25]): a lens of 2 spreads the edge over pixels on both sides.
+    const image blurred = render_wall("<NumSamples>64</NumSamples><ApertureSize>2</ApertureSize><FocusDistance>10</FocusDistance>", -5);
+    const image sharp = render_wall("<NumSamples>64</NumSamples>", -5);
+    CHECK(sharp.pixel(1, 1).x() == 0.0f);
+    CHECK(blurred.pixel(1, 1).x() > 5.0f);
+    CHECK(blurred.pixel(3, 1).x() < 100.0f);
+}
+
+TEST_CASE("course scene: the course's frame and rough mirrors") {
+    // d' = d with its smallest-magnitude component set to 1; u = normalize(d x d'); v = d x u.
+    vec3 u, v;
+    const vec3 d = unit_vector(vec3(0.2, -0.9, 0.4));
+    course_frame(d, u, v);
+    const vec3 expected_u = unit_vector(cross(d, vec3(1, d.y(), d.z())));
+    CHECK(u.x() == doctest::Approx(expected_u.x()));
+    CHECK(u.y() == doctest::Approx(expected_u.y()));
+    CHECK(u.z() == doctest::Approx(expected_u.z()));
+    CHECK(dot(u, d) == doctest::Approx(0).scale(1));
+    CHECK(dot(v, d) == doctest::Approx(0).scale(1));
+    CHECK(v.length() == doctest::Approx(1));
+    // A mirror floor reflecting a wall split into lit (x > 0) and dark halves: roughness 0 keeps
+    // the reflected edge as sharp as the pinhole makes it; roughness 0.5 spreads it, and the
+    // reflection of the wall's middle (all rays land on the lit half) keeps its value.
+    auto render_mirror = [](const std::string& roughness) {
+        std::string text = "<Scene><MaxRecursionDepth>1</MaxRecursionDepth><Cameras><Camera id=\"1\"><Position>0 1 0</Position>"
+                           "<Gaze>0 -1 -1</Gaze><Up>0 1 0</Up><NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance>"
+                           "<ImageResolution>32 32</ImageResolution><ImageName>m.png</ImageName><NumSamples>16</NumSamples>"
+                           "</Camera></Cameras><Lights><AmbientLight>100 100 100</AmbientLight></Lights><Materials>"
+                           "<Material id=\"1\" type=\"mirror\"><MirrorReflectance>1 1 1</MirrorReflectance>" + roughness +
+                           "</Material><Material id=\"2\"><AmbientReflectance>1 1 1</AmbientReflectance></Material></Materials>"
+                           "<VertexData>-50 0 50  50 0 50  50 0 -50  -50 0 -50  0 -1 -5  50 -1 -5  50 50 -5  0 50 -5</VertexData>"
+                           "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3  1 3 4</Faces></Mesh>"
+                           "<Mesh id=\"2\"><Material>2</Material><Faces>5 6 7  5 7 8</Faces></Mesh></Objects></Scene>";
+        return render_whitted(load_text(text), 0).img;
+    };
+    const image smooth = render_mirror(""), rough = render_mirror("<Roughness>0.5</Roughness>");
+    auto partial = [](const image& img) {
+        int count = 0;
+        for (int j = 16; j < 32; ++j)
+            for (int i = 0; i < 32; ++i) count += img.pixel(i, j).x() > 1 && img.pixel(i, j).x() < 99;
+        return count;
+    };
+    CHECK(partial(rough) > 2 * partial(smooth) + 10);
 }
 
 } // namespace test_course_scene

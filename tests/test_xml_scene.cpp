@@ -318,7 +318,7 @@ TEST_CASE("xml scene: comments, CRLF, one line and element order do not change t
                   "<Textures><Images><Image id=\"1\">x.jpg</Image></Images></Textures><Objects>"
                   "<LightSphere id=\"9\"><Material>1</Material><Transformations>t1</Transformations></LightSphere>");
     later.replace(later.find("<PointLight id=\"1\">"), 19,
-                  "<AreaLight id=\"5\"><Position>0 0 0</Position></AreaLight><PointLight id=\"1\">");
+                  "<SphericalDirectionalLight id=\"5\"><ImageId>1</ImageId></SphericalDirectionalLight><PointLight id=\"1\">");
 
     for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
              {"commented", commented}, {"crlf", crlf}, {"one_line", one_line}, {"reordered", reordered},

@@ -24,6 +24,12 @@ struct view_camera {
     std::string image_name; // as the file gives it; .png, .ppm, .pfm or .exr
     // handedness="left": u = w x up instead of up x w, the image mirrored left to right (v as before).
     bool left_handed = false;
+    // Distribution ray tracing (homework 3): samples per pixel (NumSamples: jittered on a
+    // sqrt(N) x sqrt(N) grid when N is a square, else uniform in the pixel; 1 is the pixel's
+    // centre), and a square lens of edge `aperture` in the u-v plane whose rays meet on the plane
+    // at `focus_distance` along the gaze (0: a pinhole). course/whitted.h takes them.
+    int samples = 1;
+    double aperture = 0, focus_distance = 0;
 };
 
 // The frame of a CENG795 course camera (above): the image plane at near_distance along

@@ -100,6 +100,7 @@ struct whitted_render {
 struct whitted_terms {
     vec3f ambient{0, 0, 0}, specular{0, 0, 0};
     float phong_exponent = 1;
+    float roughness = 0; // tilts the mirror and glass rays (whitted_material::roughness)
 
     static whitted_terms of(const compiled_material& m);
 };
@@ -144,7 +145,7 @@ class whitted_renderer {
     void open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays, frame& f,
               const whitted_settings& w) const;
     vec3f shade(const surface_hit& hit, const ray3f& r, const compiled_material& m, const whitted_terms& terms,
-                uint64_t& rays) const;
+                pcg32& rng, uint64_t& rays) const;
     ray3f spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const;
 
     // What rendering needs of the scene besides its geometry, copied: the renderer does not
@@ -155,9 +156,15 @@ class whitted_renderer {
     int max_recursion_depth_ = 0;
     std::shared_ptr<const compiled_scene> compiled_; // shared by the renderer's copies
     std::vector<whitted_terms> terms_; // by compiled material index
+    // A light as shade() asks it (course_lights.h has the formulas).
     struct light_f {
-        vec3f position; // relative to the compiled scene's origin
-        vec3f intensity;
+        enum kind_t { point, directional, spot, area } kind = point;
+        vec3f position;  // relative to the compiled scene's origin: point, spot, area (its centre)
+        vec3f intensity; // I (point, spot) or radiance (directional, area)
+        vec3f axis;      // unit: towards the light (directional), the cone's axis (spot), the normal (area)
+        vec3f edge_u, edge_v; // area: the square's edges, each of length size
+        float square_area = 0;
+        spot_light cone;  // spot: the fall-off
     };
     std::vector<light_f> lights_;
 };
@@ -205,6 +212,7 @@ RTWEEKEND_ENGINE_FUNCTION whitted_terms whitted_terms::of(const compiled_materia
         t.ambient = vec3f(w->ambient);
         t.specular = vec3f(w->specular);
         t.phong_exponent = static_cast<float>(w->phong_exponent);
+        t.roughness = static_cast<float>(w->roughness);
     }
     return t;
 }
@@ -230,7 +238,52 @@ RTWEEKEND_ENGINE_FUNCTION whitted_renderer::whitted_renderer(const whitted_scene
     for (const point_light& l : scene.lights) {
         if (!finite3(l.position)) throw scene_error("point light position must be finite");
         check_color(l.intensity, "point light intensity");
-        lights_.push_back({vec3f(l.position - compiled->origin), vec3f(l.intensity)});
+        light_f f;
+        f.position = vec3f(l.position - compiled->origin);
+        f.intensity = vec3f(l.intensity);
+        lights_.push_back(f);
+    }
+    auto unit_direction = [](const vec3& d, const char* what) {
+        if (!finite3(d) || !(d.length_squared() > 0)) throw scene_error(std::string(what) + " must be a non-zero finite vector");
+        return unit_vector(d);
+    };
+    for (const directional_light& l : scene.directional_lights) {
+        check_color(l.radiance, "directional light radiance");
+        light_f f;
+        f.kind = light_f::directional;
+        f.axis = vec3f(-unit_direction(l.direction, "directional light direction"));
+        f.intensity = vec3f(l.radiance);
+        lights_.push_back(f);
+    }
+    for (const spot_light& l : scene.spot_lights) {
+        if (!finite3(l.position)) throw scene_error("spot light position must be finite");
+        check_color(l.intensity, "spot light intensity");
+        if (!(l.falloff_degrees >= 0 && l.falloff_degrees <= l.coverage_degrees && l.coverage_degrees <= 360))
+            throw scene_error("spot light angles must satisfy 0 <= falloff <= coverage <= 360 degrees");
+        light_f f;
+        f.kind = light_f::spot;
+        f.position = vec3f(l.position - compiled->origin);
+        f.axis = vec3f(unit_direction(l.direction, "spot light direction"));
+        f.intensity = vec3f(l.intensity);
+        f.cone = l;
+        lights_.push_back(f);
+    }
+    for (const area_light& l : scene.area_lights) {
+        if (!finite3(l.position)) throw scene_error("area light position must be finite");
+        check_color(l.radiance, "area light radiance");
+        if (!(l.size > 0) || !std::isfinite(l.size)) throw scene_error("area light size must be positive and finite");
+        const vec3 n = unit_direction(l.normal, "area light normal");
+        vec3 u, v;
+        course_frame(n, u, v);
+        light_f f;
+        f.kind = light_f::area;
+        f.position = vec3f(l.position - compiled->origin);
+        f.axis = vec3f(n);
+        f.edge_u = vec3f(l.size * u);
+        f.edge_v = vec3f(l.size * v);
+        f.square_area = float(l.size * l.size);
+        f.intensity = vec3f(l.radiance);
+        lights_.push_back(f);
     }
     // Back faces the culled walk skips (whitted_settings::cull_back_faces asks for it per render).
     compiled->set_back_face_culling([&](uint32_t m) { return !compiled->materials[m].transmits(); });
@@ -250,29 +303,50 @@ RTWEEKEND_ENGINE_FUNCTION ray3f whitted_renderer::spawn(const surface_hit& hit, 
     return r;
 }
 
-// Ambient, plus what every point light the point sees adds: the material's eval towards the
-// light and the course's Blinn-Phong specular term.
+// Ambient, plus what every light the point sees adds: its irradiance E (course_lights.h) times
+// the material's eval towards the light and the course's Blinn-Phong specular term. An area light
+// is sampled at one point per call (two random numbers each; the other lights draw none).
 RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r,
                                                         const compiled_material& m, const whitted_terms& terms,
-                                                        uint64_t& rays) const {
+                                                        pcg32& rng, uint64_t& rays) const {
     vec3f L = terms.ambient * ambient_light_;
     if (lights_.empty()) return L;
     const vec3f n = hit.shading_normal, v = -r.dir;
     const shading_point sp{n, hit.front_face};
     const ray3f base = spawn(hit, hit.normal, r.dir); // origin on the side the ray came from
     for (const light_f& light : lights_) {
-        vec3f to_light = light.position - hit.p;
-        float d2 = dot(to_light, to_light);
-        float d = std::sqrt(d2);
-        vec3f l = to_light / d;
-        // Shadow ray towards the light; only something closer than the light blocks it.
         ray3f shadow = base;
-        vec3f to_light_from_origin = light.position - shadow.origin;
-        shadow.tmax = length(to_light_from_origin);
-        shadow.dir = to_light_from_origin / shadow.tmax;
+        vec3f l, E;
+        if (light.kind == light_f::directional) {
+            // Light from infinitely far along -axis: no fall-off, and anything in the way blocks it.
+            l = light.axis;
+            E = light.intensity;
+            shadow.dir = l;
+        } else {
+            vec3f at = light.position;
+            if (light.kind == light_f::area) {
+                const float xi1 = rng.next_float() - 0.5f, xi2 = rng.next_float() - 0.5f;
+                at = light.position + xi1 * light.edge_u + xi2 * light.edge_v;
+            }
+            vec3f to_light = at - hit.p;
+            float d2 = dot(to_light, to_light);
+            float d = std::sqrt(d2);
+            l = to_light / d;
+            E = light.intensity / d2; // irradiance at distance d: I / d^2
+            if (light.kind == light_f::spot) {
+                const float s = float(light.cone.falloff(double(dot(-l, light.axis))));
+                if (s == 0) continue;
+                E = s * E;
+            } else if (light.kind == light_f::area) {
+                E = (light.square_area * std::fabs(dot(light.axis, l))) * E; // L A |n_l . w_i| / d^2, two-sided
+            }
+            // Shadow ray towards the light; only something closer than the light blocks it.
+            vec3f to_light_from_origin = at - shadow.origin;
+            shadow.tmax = length(to_light_from_origin);
+            shadow.dir = to_light_from_origin / shadow.tmax;
+        }
         ++rays;
         if (compiled_->occluded(shadow)) continue;
-        vec3f E = light.intensity / d2; // irradiance at distance d: I / d^2
         vec3f h = normalize(l + v);
         float specular = std::pow(fmax_inline(0.0f, dot(n, h)), terms.phong_exponent);
         L += E * (pi_f * m.eval(v, l, sp) + specular * terms.specular);
@@ -305,7 +379,7 @@ RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::open(const surface_hit& hit, co
     // The course's rule for glass seen from inside (whitted_settings::shade_inside_dielectrics):
     // no ambient, diffuse or specular term there, and so no shadow rays.
     const bool from_inside_glass = m.refracts() && !hit.front_face;
-    f.L = from_inside_glass && !w.shade_inside_dielectrics ? vec3f{0, 0, 0} : shade(hit, r, m, terms, rays);
+    f.L = from_inside_glass && !w.shade_inside_dielectrics ? vec3f{0, 0, 0} : shade(hit, r, m, terms, rng, rays);
     f.count = f.taken = 0;
     if (depth >= max_recursion_depth_) return;
 
@@ -325,7 +399,17 @@ RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::open(const surface_hit& hit, co
         const bool transmitted = s.sampled == delta_transmission;
         const bool inside = hit.front_face == transmitted;
         branch& b = f.branches[f.count++];
-        b.ray = spawn(hit, transmitted ? -hit.normal : hit.normal, s.wi);
+        vec3f wi = s.wi;
+        if (terms.roughness > 0) {
+            // The course's glossy reflection and refraction: the ideal ray tilted within a square
+            // of side `roughness` about it (two random numbers per ray; a tilt that crosses the
+            // surface is traced as it is, which the course leaves open).
+            vec3 u, v;
+            course_frame(vec3(wi.x, wi.y, wi.z), u, v);
+            const float xi1 = rng.next_float() - 0.5f, xi2 = rng.next_float() - 0.5f;
+            wi = normalize(wi + terms.roughness * (xi1 * vec3f(u) + xi2 * vec3f(v)));
+        }
+        b.ray = spawn(hit, transmitted ? -hit.normal : hit.normal, wi);
         b.weight = s.value;
         b.absorbing = inside && m.absorbs_inside();
         if (b.absorbing) b.medium = m;
@@ -384,8 +468,8 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace(const ray3f& r, pcg32& r
 RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_index,
                                                                   const render_settings& given) const {
     auto start = std::chrono::steady_clock::now();
-    render_settings settings = given; // one ray through the centre of each pixel
-    settings.samples_per_pixel = 1;
+    render_settings settings = given; // the camera's samples (one: through the centre of each pixel)
+    settings.samples_per_pixel = cameras_.size() > camera_index ? std::max(1, cameras_[camera_index].samples) : 1;
     settings.first_sample = settings.end_sample = 0;
     settings.adaptive_error = 0;
     settings.check("Whitted render settings");
@@ -402,11 +486,15 @@ RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_
         !std::isfinite(c.left + c.right + c.bottom + c.top + c.near_distance))
         throw scene_error("camera settings must be finite numbers");
 
+    if (!(c.aperture >= 0) || !std::isfinite(c.aperture) || (c.aperture > 0 && !(c.focus_distance > 0)) ||
+        !std::isfinite(c.focus_distance))
+        throw scene_error("camera aperture must be finite and non-negative, with a positive focus distance");
     // The camera's basis: w = -gaze, v' = up, u = v' x w, v = w x u (gaze and up need not be
-    // perpendicular; u is normalised so that they need not be).
+    // perpendicular; u is normalised so that they need not be). A left-handed camera turns u round.
     const vec3 w = -unit_vector(c.gaze);
-    const vec3 u = unit_vector(cross(c.up, w));
-    const vec3 v = cross(w, u);
+    const vec3 right_u = unit_vector(cross(c.up, w));
+    const vec3 v = cross(w, right_u);
+    const vec3 u = c.left_handed ? -right_u : right_u;
     if (!finite3(u) || !finite3(w)) throw scene_error("camera gaze and up must be non-zero and not parallel");
     // Pixel (i, j), j = 0 the top row: s = e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v.
     const vec3 corner = -c.near_distance * w + c.left * u + c.top * v; // relative to e
@@ -414,16 +502,43 @@ RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_
     const vec3f eye(c.position - compiled_->origin);
 
     const whitted_settings& ws = settings.whitted;
+    // NumSamples (homework 3): sample s of a pixel is jittered in cell s of a grid x grid
+    // stratification when the count is a square, else uniform in the pixel; the image is the plain
+    // mean. Each draws 5 numbers, as the course says: 2 for the pixel, 2 for the lens, 1 for the
+    // time. One sample through a pinhole is the pixel's centre, at time 0, drawing none.
+    const int samples = settings.samples_per_pixel;
+    int grid = int(std::lround(std::sqrt(double(samples))));
+    if (grid * grid != samples) grid = 0;
+    const double aperture = c.aperture, focus = c.focus_distance;
     render_result out = render_samples(
         c.width, c.height, settings,
-        [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
-            vec3 dir = corner + (x + 0.5) * du + (y + 0.5) * dv;
+        [&](int x, int y, int s, pcg32& rng, uint64_t& rays) {
+            double px = 0.5, py = 0.5, lx = 0, ly = 0;
+            float time = 0;
+            if (samples > 1 || aperture > 0) {
+                const double xi1 = rng.next_float(), xi2 = rng.next_float();
+                px = grid > 0 ? (s % grid + xi1) / grid : xi1;
+                py = grid > 0 ? (s / grid + xi2) / grid : xi2;
+                lx = rng.next_float() - 0.5;
+                ly = rng.next_float() - 0.5;
+                time = rng.next_float();
+            }
+            vec3 dir = unit_vector(corner + (x + px) * du + (y + py) * dv);
             ray3f r;
             r.origin = eye;
-            r.dir = vec3f(unit_vector(dir));
+            if (aperture > 0) {
+                // A square lens of edge `aperture` about e; the pinhole ray's point on the plane at
+                // FocusDistance along the gaze stays in focus: p = e + (focus / (dir . -w)) dir.
+                const vec3 lens = aperture * (lx * u + ly * v);
+                const vec3 p = (focus / dot(dir, -w)) * dir;
+                r.origin = eye + vec3f(lens);
+                dir = unit_vector(p - lens);
+            }
+            r.dir = vec3f(dir);
             r.tmin = 0;
             r.tmax = std::numeric_limits<float>::infinity();
-            return trace(r, rng, rays, ws); // delta lobes draw no random numbers
+            r.time = time;
+            return trace(r, rng, rays, ws);
         },
         start);
     return {std::move(out.img), out.stats, std::move(out.sums)};

@@ -17,6 +17,7 @@
 #include "../point_light.h"
 #include "../vec3.h"
 #include "../whitted_material.h"
+#include "course_lights.h"
 #include "view_camera.h"
 
 #include <string>
@@ -32,6 +33,9 @@ struct whitted_scene {
     int max_recursion_depth = 0;        // bounces; primary rays are depth 0
     color ambient_light{0, 0, 0};
     std::vector<point_light> lights;
+    std::vector<directional_light> directional_lights; // course_lights.h
+    std::vector<spot_light> spot_lights;
+    std::vector<area_light> area_lights;
     std::vector<view_camera> cameras;
     hittable_list world;                // spheres, triangles and meshes with whitted_material materials
     // The files the scene was read from (load_xml_scene): the XML file, then its PLY meshes. Empty

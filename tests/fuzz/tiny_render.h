@@ -30,6 +30,7 @@ inline void shrink(rt::whitted_scene& scene) {
     for (rt::view_camera& c : scene.cameras) {
         c.width = std::min(c.width, 4);
         c.height = std::min(c.height, 4);
+        c.samples = std::min(c.samples, 4); // NumSamples may ask for 2^24
     }
     scene.max_recursion_depth = std::min(scene.max_recursion_depth, 3);
 }
