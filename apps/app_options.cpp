@@ -56,6 +56,12 @@ bool is_xml_scene(const std::string& path) {
     return ext == ".xml" || ext == ".json"; // the course's JSON form reads as its XML
 }
 
+void tool_usage_error(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& message) {
+    std::fprintf(stderr, "%s: error: %s\n", d.name, message.c_str());
+    print_tool_usage(stderr);
+    std::exit(2);
+}
+
 void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"

@@ -97,6 +97,10 @@ bool is_xml_scene(const std::string& path);
 
 void print_usage(const description& d, std::FILE* to);
 
+// For a tool with a parser of its own (compare, tonemap): "NAME: error: MESSAGE" and the tool's
+// usage (print_tool_usage) on stderr, then exit status 2.
+[[noreturn]] void tool_usage_error(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& message);
+
 [[noreturn]] void usage_error(const description& d, const std::string& message);
 
 // Why parse_arguments() gave no options to run with, thrown by it: what parse() prints and the

@@ -43,11 +43,7 @@ void print_usage(std::FILE* to) {
                  d.summary);
 }
 
-[[noreturn]] void usage_error(const std::string& message) {
-    std::fprintf(stderr, "%s: error: %s\n", d.name, message.c_str());
-    print_usage(stderr);
-    std::exit(2);
-}
+[[noreturn]] void usage_error(const std::string& message) { app::tool_usage_error(d, print_usage, message); }
 
 struct arguments {
     std::vector<std::string> files;

@@ -245,7 +245,8 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);
         rt::render_result r = rt::path_trace(compiled, rt::view_camera_frame(scene.cameras[i]), env, settings);
-        rt::write_whitted_image(outputs[i], r.img);
+        const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
+        if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render: wrote %s\n", also.c_str());
         if (r.stats.interrupted) {
             std::fprintf(stderr,
                          "render: interrupted after %d %% of camera %zu (average %.1f samples per pixel); wrote %s "
@@ -282,7 +283,8 @@ inline void render_xml_scene(const options& opt, const rt::whitted_scene& scene,
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);
         rt::whitted_render r = renderer.render(i, settings);
-        rt::write_whitted_image(outputs[i], r.img);
+        const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
+        if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render: wrote %s\n", also.c_str());
         if (r.stats.interrupted) {
             const uint64_t pixels = uint64_t(r.img.width()) * uint64_t(r.img.height());
             std::fprintf(stderr,

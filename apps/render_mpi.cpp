@@ -129,7 +129,8 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
     rt::mpi::together(comm, [&] {
         if (rank != 0) return;
         for (size_t i = 0; i < images.size(); ++i) {
-            rt::write_whitted_image(outputs[i], images[i]);
+            const std::string also = rt::write_course_image(outputs[i], images[i], scene.cameras[i]);
+            if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render_mpi: wrote %s\n", also.c_str());
             if (!opt.quiet) std::fprintf(stderr, "render_mpi: wrote %s\n", outputs[i].c_str());
         }
     });

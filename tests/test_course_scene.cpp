@@ -7,6 +7,8 @@
 #include <rtweekend/sphere.h>
 #include <rtweekend/transform.h>
 #include <rtweekend/course/whitted.h>
+#include <rtweekend/image/image_read.h>
+#include <rtweekend/image/tonemap.h>
 #include <rtweekend/io/xml_scene.h>
 
 #include <doctest/doctest.h>
@@ -64,6 +66,11 @@ point3 placed(const std::shared_ptr<hittable>& obj, const point3& p) {
 std::shared_ptr<hittable> inner(const std::shared_ptr<hittable>& obj) {
     if (auto t = std::dynamic_pointer_cast<transform>(obj)) return t->object();
     return obj;
+}
+
+std::string replace_tmo(std::string text, const std::string& tmo) {
+    const size_t at = text.find("Photographic");
+    return text.replace(at, 12, tmo);
 }
 
 bool same(const vec3& a, const vec3& b) { return a.x() == b.x() && a.y() == b.y() && a.z() == b.z(); }
@@ -221,13 +228,13 @@ TEST_CASE("course scene: every element and attribute not read is one warning nam
                                  "<Sphere id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Center>1</Center>"
                                  "<Radius>1</Radius>\n<MotionBlur>0 0 1</MotionBlur></Sphere>\n"
                                  "<LightSphere id=\"2\"><Radiance>1 1 1</Radiance></LightSphere>");
-    text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Tonemap>x</Tonemap>");
+    text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Renderer>PathTracing</Renderer>");
     whitted_scene s = load_text(text, "warn.xml");
     REQUIRE(s.warnings.size() == 4);
-    // Line 3: <Tonemap> (the camera then ends on line 7; lights, materials, transformations
+    // Line 3: <Renderer> (the camera then ends on line 7; lights, materials, transformations
     // and vertices take a line each); line 12: the sphere's attribute (not read on spheres), line
     // 13 its <MotionBlur>; line 14: the light sphere, whose children are not looked at.
-    CHECK(s.warnings[0].find("warn.xml:3: <Tonemap> is not supported yet and is ignored") != std::string::npos);
+    CHECK(s.warnings[0].find("warn.xml:3: <Renderer> is not supported yet and is ignored") != std::string::npos);
     CHECK(s.warnings[1].find("warn.xml:12: <Sphere id=\"1\">: attribute shadingMode=\"smooth\" is not supported yet") !=
           std::string::npos);
     CHECK(s.warnings[2].find("warn.xml:13: <MotionBlur> is not supported yet") != std::string::npos);
@@ -493,6 +500,71 @@ TEST_CASE("course scene: the course's frame and rough mirrors") {
         return count;
     };
     CHECK(partial(rough) > 2 * partial(smooth) + 10);
+}
+
+TEST_CASE("course scene: the photographic tone mapping of small images, worked by hand") {
+    auto grey = [](const std::vector<double>& ys) {
+        image img(int(ys.size()), 1);
+        for (size_t i = 0; i < ys.size(); ++i) img.set_pixel(int(i), 0, color(ys[i], ys[i], ys[i]));
+        return img;
+    };
+    // Two grey pixels of luminance 1 and 4: Ybar = exp((ln(1 + 1e-6) + ln(4 + 1e-6)) / 2) = 2.0000012,
+    // L = 0.18 Y / Ybar = 0.0899999 and 0.3599998, Ld = L / (1 + L) = 0.0825688 and 0.2647058,
+    // 255 Ld^(1/2.2) = 82.07 and 139.37, truncated.
+    const std::vector<unsigned char> two = tonemap_photographic(grey({1, 4}), {0.18, 0, 1, 2.2});
+    CHECK(two == std::vector<unsigned char>{82, 82, 82, 139, 139, 139});
+    // Burn 40 of five pixels Y = 1, 2, 3, 4, 8: Ybar = 24^(1/5)... = 2.8619394 (with the 1e-6), the
+    // 60th percentile is the pixel at index floor(5 * 0.6) = 3 (Y = 4), so Lwhite = 0.18 * 4 / Ybar =
+    // 0.2515777; Ld = L (1 + L / Lwhite^2) / (1 + L) gives 0.1179745, 0.3338005, 0.6319457 for Y = 1,
+    // 2, 3 (bytes 96, 154, 206), exactly 1 at Y = 4 (byte 254 or 255 by rounding) and 2.9958 at Y =
+    // 8, clamped to white.
+    const std::vector<unsigned char> five = tonemap_photographic(grey({1, 2, 3, 4, 8}), {0.18, 40, 1, 2.2});
+    CHECK(five[0] == 96);
+    CHECK(five[3] == 154);
+    CHECK(five[6] == 206);
+    CHECK(five[9] >= 254);
+    CHECK(five[12] == 255);
+    // Saturation on one pixel (2, 1, 0.5): Y = 1.1765 = Ybar, L = 0.18, Ld = 0.1525423; each channel
+    // is Ld (C / Y)^s: s = 0 is grey (255 Ld^(1/2.2) = 108.9), s = 1 the colour (138, 100, 73).
+    image one(1, 1);
+    one.set_pixel(0, 0, color(2, 1, 0.5));
+    CHECK(tonemap_photographic(one, {0.18, 0, 0, 2.2}) == std::vector<unsigned char>{108, 108, 108});
+    CHECK(tonemap_photographic(one, {0.18, 0, 1, 2.2}) == std::vector<unsigned char>{138, 100, 73});
+    // Black stays black (and counts in the log average); bad settings are one error.
+    CHECK(tonemap_photographic(grey({0, 1}), {0.18, 0, 1, 2.2})[0] == 0);
+    CHECK_THROWS_WITH_AS(tonemap_photographic(one, {0, 0, 1, 2.2}), "tone mapping: the key must be positive, got 0",
+                         scene_error);
+    CHECK_THROWS_AS(tonemap_photographic(one, {0.18, 100, 1, 2.2}), scene_error);
+    CHECK_THROWS_AS(tonemap_photographic(one, {0.18, 0, 1, 0}), scene_error);
+}
+
+TEST_CASE("course scene: a camera's <Tonemap> writes the linear image and its tone mapping") {
+    const std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+                             "<NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance><ImageResolution>4 4</ImageResolution>"
+                             "<ImageName>hdr.pfm</ImageName><Tonemap><TMO>Photographic</TMO><TMOOptions>0.18 1</TMOOptions>"
+                             "<Saturation>0.8</Saturation><Gamma>2.2</Gamma></Tonemap></Camera></Cameras>"
+                             "<BackgroundColor>100 400 1600</BackgroundColor></Scene>";
+    const whitted_scene s = load_text(text);
+    REQUIRE(s.cameras.size() == 1);
+    const view_camera& c = s.cameras[0];
+    CHECK(c.tonemapped);
+    CHECK(c.tonemap.key == 0.18);
+    CHECK(c.tonemap.burn == 1);
+    CHECK(c.tonemap.saturation == 0.8);
+    CHECK(s.warnings.empty());
+    const image img = render_whitted(s, 0).img;
+    test::scratch_dir dir("tonemap_pair");
+    const std::string also = write_course_image(dir.file("hdr.pfm"), img, c);
+    CHECK(also == dir.file("hdr.png"));
+    const loaded_image linear = read_image(dir.file("hdr.pfm")), mapped = read_image(dir.file("hdr.png"));
+    CHECK(linear.pixels.data() == img.data());
+    CHECK(mapped.display_encoded);
+    const std::vector<unsigned char> expected = tonemap_photographic(img, c.tonemap);
+    REQUIRE(mapped.pixels.data().size() == expected.size());
+    // The background (100, 400, 1600) everywhere: every pixel the same.
+    for (size_t i = 3; i < expected.size(); ++i) CHECK(expected[i] == expected[i % 3]);
+    CHECK(error_of(replace_tmo(text, "Reinhard")).find("<TMO> 'Reinhard' is not supported (Photographic is)") !=
+          std::string::npos);
 }
 
 } // namespace test_course_scene

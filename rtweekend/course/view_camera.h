@@ -3,6 +3,7 @@
 // XML reader, io/xml_scene.h, fills them in), and the path tracer's camera_frame for one.
 
 #include "../core/scene_error.h"
+#include "../image/tonemap.h"
 #include "../render/camera_frame.h"
 #include "../vec3.h"
 
@@ -30,6 +31,10 @@ struct view_camera {
     // at `focus_distance` along the gaze (0: a pinhole). course/whitted.h takes them.
     int samples = 1;
     double aperture = 0, focus_distance = 0;
+    // <Tonemap> (homework 5): the image is written linear (EXR) and as a PNG through the
+    // photographic operator (image/tonemap.h); write_course_image (course/whitted.h) writes both.
+    bool tonemapped = false;
+    photographic_tonemap tonemap;
 };
 
 // The frame of a CENG795 course camera (above): the image plane at near_distance along

@@ -180,6 +180,14 @@ RTWEEKEND_ENGINE_FUNCTION std::vector<unsigned char> encode_whitted_8bit(const i
 // atomically.
 RTWEEKEND_ENGINE_FUNCTION void write_whitted_image(const std::string& path, const image& img);
 
+// Writes camera `cam`'s image to `path`: as write_whitted_image, unless the camera has a <Tonemap>
+// (homework 5). Then the 8-bit file (a .png, .ppm or .bmp path) holds the photographic tone
+// mapping (image/tonemap.h) and an EXR of the same stem the linear radiance; a linear path (.exr or
+// .pfm) holds the radiance and a PNG of the same stem the tone mapping, as the course's references
+// come in pairs. Returns the second file's path ("" when there is none). Both atomically.
+RTWEEKEND_ENGINE_FUNCTION std::string write_course_image(const std::string& path, const image& img,
+                                                         const view_camera& cam);
+
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 // Left out of a program that links the engine (core/engine_linkage.h).
 #if RTWEEKEND_ENGINE_BODIES
@@ -567,12 +575,33 @@ RTWEEKEND_ENGINE_FUNCTION void write_whitted_image(const std::string& path, cons
     write_file_atomically(path, contents);
 }
 
+RTWEEKEND_ENGINE_FUNCTION std::string write_course_image(const std::string& path, const image& img,
+                                                         const view_camera& cam) {
+    if (!cam.tonemapped) {
+        write_whitted_image(path, img);
+        return "";
+    }
+    if (img.empty()) throw scene_error("cannot write '" + path + "': the image is empty");
+    const std::string ext = detail::image_format(path);
+    const std::string stem = path.substr(0, path.size() - ext.size());
+    const bool linear = ext == ".exr" || ext == ".pfm";
+    const std::string mapped_path = linear ? stem + ".png" : path, linear_path = linear ? path : stem + ".exr";
+    const std::vector<unsigned char> bytes = tonemap_photographic(img, cam.tonemap);
+    // Both encoded before either is written: a failure (no OpenEXR, say) leaves neither behind.
+    const std::string linear_file = detail::image_format(linear_path) == ".pfm" ? encode_pfm(img) : encode_exr(img, linear_path);
+    const std::string mapped_file = encode_8bit_image(mapped_path, img.width(), img.height(), bytes);
+    write_file_atomically(linear_path, linear_file);
+    write_file_atomically(mapped_path, mapped_file);
+    return linear ? mapped_path : linear_path;
+}
+
 #endif // RTWEEKEND_ENGINE_BODIES
 
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::render_whitted;
+using rt::write_course_image;
 using rt::whitted_render;
 using rt::whitted_renderer;
 #endif

@@ -48,10 +48,11 @@
 // <Roughness> (whitted_material.h); <Lights> with <DirectionalLight> (Direction, Radiance),
 // <SpotLight> (Position, Direction, Intensity, CoverageAngle, FalloffAngle: full angles in
 // degrees, falloff <= coverage <= 360) and <AreaLight> (Position, Normal, Size, Radiance):
-// course/course_lights.h.
+// course/course_lights.h. A camera's <Tonemap> (homework 5: TMO Photographic, TMOOptions key and
+// burn, Saturation, Gamma) writes its image linear and tone mapped (write_course_image).
 //
 // Not read yet (later homeworks): <MotionBlur>, textures and <TexCoordData>, environment lights,
-// BRDFs, light objects, tone mapping and renderers. Each such element, and any other the lists
+// BRDFs, light objects and renderers. Each such element, and any other the lists
 // above do not name, and any attribute they do not name, is one warning
 // (whitted_scene::warnings: "scene.xml:12: <MotionBlur> is not supported yet and is ignored"; at
 // most 20, then a count of the rest); the scene renders without it. <VertexData binaryFile> is
@@ -523,6 +524,26 @@ class xml_scene_reader {
         }
     }
 
+    // <Tonemap>: <TMO>Photographic</TMO> (the only operator the course uses), <TMOOptions>key
+    // burn</TMOOptions>, <Saturation>, <Gamma>.
+    void read_tonemap(node t, const std::string& owner, view_camera& cam) const {
+        node tmo = child(t, "TMO", true);
+        const std::string name = trim(text(tmo, owner));
+        if (lower(name) != "photographic")
+            fail(tmo, owner, "<TMO> '" + token_text(name) + "' is not supported (Photographic is)");
+        photographic_tonemap& m = cam.tonemap;
+        node options = child(t, "TMOOptions", true);
+        const std::vector<double> kb = numbers(options, owner, 2, 2);
+        if (!(kb[0] > 0)) fail(options, owner, "<TMOOptions>: the key must be positive, not " + number_text(kb[0]));
+        if (!(kb[1] >= 0 && kb[1] < 100))
+            fail(options, owner, "<TMOOptions>: burn must be a percentage in [0, 100), not " + number_text(kb[1]));
+        m.key = kb[0];
+        m.burn = kb[1];
+        if (node n = child(t, "Saturation", false)) m.saturation = bounded(n, owner, 0, false);
+        if (node n = child(t, "Gamma", false)) m.gamma = bounded(n, owner, 0, true);
+        cam.tonemapped = true;
+    }
+
     // <Transformations> at the scene's level: the numbered translations, scalings, rotations and
     // composites that objects name (t1, s2, r3, c4).
     void read_transformations(node root) {
@@ -698,6 +719,7 @@ class xml_scene_reader {
                 if (node n = child(c, "FocusDistance", false)) cam.focus_distance = bounded(n, owner, 0, true);
                 if (cam.aperture > 0 && cam.focus_distance == 0)
                     fail(c, owner, "an <ApertureSize> needs a <FocusDistance>");
+                if (node t = child(c, "Tonemap", false)) read_tonemap(t, owner, cam);
                 if (pugi::xml_attribute hand = attr(c, "handedness")) {
                     const std::string h = lower(trim(hand.value()));
                     if (h == "left") cam.left_handed = true;
