@@ -246,7 +246,6 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
         exit_if_interrupted_before(i, cameras);
         rt::render_result r = rt::path_trace(compiled, rt::view_camera_frame(scene.cameras[i]), env, settings);
         const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
-        if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render: wrote %s\n", also.c_str());
         if (r.stats.interrupted) {
             std::fprintf(stderr,
                          "render: interrupted after %d %% of camera %zu (average %.1f samples per pixel); wrote %s "
@@ -257,6 +256,7 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
             std::exit(130);
         }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
+        if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render: wrote %s\n", also.c_str());
     }
 }
 
@@ -284,7 +284,6 @@ inline void render_xml_scene(const options& opt, const rt::whitted_scene& scene,
         exit_if_interrupted_before(i, cameras);
         rt::whitted_render r = renderer.render(i, settings);
         const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
-        if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render: wrote %s\n", also.c_str());
         if (r.stats.interrupted) {
             const uint64_t pixels = uint64_t(r.img.width()) * uint64_t(r.img.height());
             std::fprintf(stderr,
@@ -298,6 +297,7 @@ inline void render_xml_scene(const options& opt, const rt::whitted_scene& scene,
             std::exit(130);
         }
         if (!opt.quiet) std::fprintf(stderr, "render: wrote %s\n", outputs[i].c_str());
+        if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render: wrote %s\n", also.c_str());
     }
 }
 

@@ -130,8 +130,8 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
         if (rank != 0) return;
         for (size_t i = 0; i < images.size(); ++i) {
             const std::string also = rt::write_course_image(outputs[i], images[i], scene.cameras[i]);
-            if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render_mpi: wrote %s\n", also.c_str());
             if (!opt.quiet) std::fprintf(stderr, "render_mpi: wrote %s\n", outputs[i].c_str());
+            if (!also.empty() && !opt.quiet) std::fprintf(stderr, "render_mpi: wrote %s\n", also.c_str());
         }
     });
 }
