@@ -263,6 +263,40 @@ class scale : public transform {
     vec3 factors_;
 };
 
+// An object moving in a straight line while the shutter is open: at the ray's time t (in [0, 1])
+// it is displaced by t * displacement, as book 2's moving sphere is (CENG795's <MotionBlur> on any
+// object). Its box covers the whole motion. The renderer traces the object in its own frame (an
+// instance, scene/shapes/instance_set.h) with the ray moved back by t * displacement. Light
+// sampling does not pass through it (the hittable defaults): a moving light is found by the rays
+// that hit it.
+//
+//   auto blurred = make_shared<moving>(box(point3(0, 0, 0), point3(1, 1, 1), red), vec3(0, 0.5, 0));
+class moving : public hittable {
+  public:
+    moving(std::shared_ptr<hittable> object, const vec3& displacement)
+        : object_(std::move(object)), displacement_(displacement),
+          bbox_(aabb(object_->bounding_box(), object_->bounding_box() + displacement_)) {}
+
+    bool hit(const ray& r, interval ray_t, hit_record& rec) const override {
+        // Where the object is at the ray's time is where the ray, moved the other way, meets it.
+        const vec3 shift = r.time() * displacement_;
+        ray moved(r.origin() - shift, r.direction(), r.time());
+        if (!object_->hit(moved, ray_t, rec)) return false;
+        rec.p += shift;
+        return true;
+    }
+
+    aabb bounding_box() const override { return bbox_; }
+
+    const std::shared_ptr<hittable>& object() const { return object_; }
+    const vec3& displacement() const { return displacement_; }
+
+  private:
+    std::shared_ptr<hittable> object_;
+    vec3 displacement_;
+    aabb bbox_;
+};
+
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
 inline mat3 mat3::rotation(const vec3& axis, double degrees) {
@@ -286,6 +320,7 @@ inline mat3 mat3::inverse() const {
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::mat3;
+using rt::moving;
 using rt::rotate;
 using rt::rotate_y;
 using rt::scale;

@@ -226,18 +226,18 @@ TEST_CASE("course scene: a lookAt camera takes <Gaze> as a direction, handedness
 TEST_CASE("course scene: every element and attribute not read is one warning naming it and its line") {
     std::string text = scene_xml("", "0 0 0",
                                  "<Sphere id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Center>1</Center>"
-                                 "<Radius>1</Radius>\n<MotionBlur>0 0 1</MotionBlur></Sphere>\n"
+                                 "<Radius>1</Radius>\n<Textures>1</Textures></Sphere>\n"
                                  "<LightSphere id=\"2\"><Radiance>1 1 1</Radiance></LightSphere>");
     text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Renderer>PathTracing</Renderer>");
     whitted_scene s = load_text(text, "warn.xml");
     REQUIRE(s.warnings.size() == 4);
     // Line 3: <Renderer> (the camera then ends on line 7; lights, materials, transformations
     // and vertices take a line each); line 12: the sphere's attribute (not read on spheres), line
-    // 13 its <MotionBlur>; line 14: the light sphere, whose children are not looked at.
+    // 13 its <Textures>; line 14: the light sphere, whose children are not looked at.
     CHECK(s.warnings[0].find("warn.xml:3: <Renderer> is not supported yet and is ignored") != std::string::npos);
     CHECK(s.warnings[1].find("warn.xml:12: <Sphere id=\"1\">: attribute shadingMode=\"smooth\" is not supported yet") !=
           std::string::npos);
-    CHECK(s.warnings[2].find("warn.xml:13: <MotionBlur> is not supported yet") != std::string::npos);
+    CHECK(s.warnings[2].find("warn.xml:13: <Textures> is not supported yet") != std::string::npos);
     CHECK(s.warnings[3].find("warn.xml:14: <LightSphere id=\"2\"> is not supported yet") != std::string::npos);
     // The level-1 test scene has nothing unread.
     CHECK(load_xml_scene(std::string(RTWEEKEND_TEST_DATA) + "/xml/scene.xml").warnings.empty());
@@ -565,6 +565,41 @@ TEST_CASE("course scene: a camera's <Tonemap> writes the linear image and its to
     for (size_t i = 3; i < expected.size(); ++i) CHECK(expected[i] == expected[i % 3]);
     CHECK(error_of(replace_tmo(text, "Reinhard")).find("<TMO> 'Reinhard' is not supported (Photographic is)") !=
           std::string::npos);
+}
+
+TEST_CASE("course scene: <MotionBlur> moves an object over the shutter, its instances stay still") {
+    // A wall (ambient 100) whose left edge is at x = 0 at time 0 and moves by (1, 0, 0): seen at its
+    // depth through 4 pixels across [-2, 2], the pixel [0, 1] is covered at time t where x > t, a
+    // fraction 1/2 of it on average over the shutter: its mean is 50 (1024 samples, each a uniform
+    // time: standard deviation 50 / 32 = 1.6). The pixel [-1, 0] never sees it, [1, 2] always.
+    // An instance of the wall (reset, moved down out of view and back by its own list) without a
+    // <MotionBlur> does not move.
+    auto render_wall = [](const std::string& blur, const std::string& instance) {
+        std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+                           "<NearPlane>-1 1 -1 1</NearPlane><NearDistance>5</NearDistance><ImageResolution>4 4</ImageResolution>"
+                           "<ImageName>w.png</ImageName><NumSamples>1024</NumSamples></Camera></Cameras>"
+                           "<Lights><AmbientLight>100 100 100</AmbientLight></Lights>"
+                           "<Materials><Material id=\"1\"><AmbientReflectance>1 1 1</AmbientReflectance></Material></Materials>"
+                           "<Transformations><Translation id=\"1\">0 -50 0</Translation><Translation id=\"2\">0 50 0</Translation>"
+                           "</Transformations>"
+                           "<VertexData>0 -1 -10  60 -1 -10  60 1 -10  0 1 -10</VertexData>"
+                           "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3  1 3 4</Faces>" + blur + "</Mesh>" +
+                           instance + "</Objects></Scene>";
+        return render_whitted(load_text(text), 0).img;
+    };
+    const image still = render_wall("", ""), blurred = render_wall("<MotionBlur>1 0 0</MotionBlur>", "");
+    // At depth 10 the plane of 2 units at distance 5 spans [-2, 2]: pixel i covers [-2 + i, -1 + i].
+    CHECK(still.pixel(1, 1).x() == 0.0f);
+    CHECK(still.pixel(2, 1).x() == 100.0f);
+    CHECK(blurred.pixel(1, 1).x() == 0.0f);
+    CHECK(blurred.pixel(2, 1).x() == doctest::Approx(50).epsilon(0.1)); // within 5, about 3 standard deviations
+    CHECK(blurred.pixel(3, 1).x() == 100.0f);
+    // The instance: the base's matrix (identity) then t1 t2, back where the wall is, not moving.
+    const image with_instance = render_wall("<MotionBlur>0 100 0</MotionBlur>",
+                                            "<MeshInstance id=\"2\" baseMeshId=\"1\"><Transformations>t1 t2</Transformations>"
+                                            "</MeshInstance>");
+    CHECK(with_instance.pixel(2, 1).x() == 100.0f); // the still instance covers it at every time
+    CHECK(with_instance.pixel(1, 1).x() == 0.0f);
 }
 
 } // namespace test_course_scene

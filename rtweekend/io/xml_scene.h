@@ -51,10 +51,14 @@
 // course/course_lights.h. A camera's <Tonemap> (homework 5: TMO Photographic, TMOOptions key and
 // burn, Saturation, Gamma) writes its image linear and tone mapped (write_course_image).
 //
-// Not read yet (later homeworks): <MotionBlur>, textures and <TexCoordData>, environment lights,
+// <MotionBlur>x y z</MotionBlur> on a Mesh, Sphere or MeshInstance moves it by t (x, y, z) at the
+// ray's time t, after its transformations (transform.h: moving); cameras with NumSamples give each
+// sample its own time.
+//
+// Not read yet (later homeworks): textures and <TexCoordData>, environment lights,
 // BRDFs, light objects and renderers. Each such element, and any other the lists
 // above do not name, and any attribute they do not name, is one warning
-// (whitted_scene::warnings: "scene.xml:12: <MotionBlur> is not supported yet and is ignored"; at
+// (whitted_scene::warnings: "scene.xml:12: <TexCoordData> is not supported yet and is ignored"; at
 // most 20, then a count of the rest); the scene renders without it. <VertexData binaryFile> is
 // refused.
 //
@@ -634,6 +638,16 @@ class xml_scene_reader {
         if (!finite) fail(at, owner, "<Transformations> give a matrix beyond the range of a double");
         if (det == 0) fail(at, owner, "<Transformations> give a singular matrix: the object would be flat");
     }
+    // The placed object moving by its <MotionBlur> x y z (homework 3: world space, after every
+    // transformation; at time t in [0, 1] it is displaced by t (x, y, z)), or as it is without one.
+    // An instance does not inherit its base's motion (the instructor's dragon_dynamic image).
+    std::shared_ptr<hittable> blurred(node o, const std::string& owner, std::shared_ptr<hittable> placed) const {
+        node blur = child(o, "MotionBlur", false);
+        if (!blur) return placed;
+        const vec3 d = triple(blur, owner);
+        if (d.x() == 0 && d.y() == 0 && d.z() == 0) return placed;
+        return std::make_shared<moving>(std::move(placed), d);
+    }
     // The object as placed by m.
     static std::shared_ptr<hittable> place(std::shared_ptr<hittable> object, const affine_map& m) {
         if (m.identity) return object;
@@ -859,12 +873,12 @@ class xml_scene_reader {
                 } else if (name == "Mesh") {
                     mark(o);
                     const placed_mesh& p = resolve_mesh(o);
-                    scene.world.add(place(p.geometry, p.matrix));
+                    scene.world.add(blurred(o, owner, place(p.geometry, p.matrix)));
                 } else if (name == "MeshInstance") {
                     mark(o);
                     std::set<const void*> visiting;
                     const placed_mesh p = resolve_instance(o, visiting);
-                    scene.world.add(place(with_material(p.geometry, p.material), p.matrix));
+                    scene.world.add(blurred(o, owner, place(with_material(p.geometry, p.material), p.matrix)));
                 } else if (name == "Sphere") {
                     mark(o);
                     auto mat = material_of(o, owner);
@@ -872,7 +886,8 @@ class xml_scene_reader {
                     long long id = integer(center, owner);
                     point3 c = vertices_[vertex_index(id, center, owner, "<Center> vertex " + std::to_string(id))];
                     double radius = bounded(child(o, "Radius", true), owner, 0, true);
-                    scene.world.add(place(std::make_shared<sphere>(c, radius, mat), object_transform(o, owner)));
+                    scene.world.add(
+                        blurred(o, owner, place(std::make_shared<sphere>(c, radius, mat), object_transform(o, owner))));
                 }
                 // Anything else (light objects, ...) belongs to a later homework: warned about.
             }

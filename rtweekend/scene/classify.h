@@ -30,8 +30,8 @@ namespace rt {
 
 // The hittables the scene compiler lays out itself: containers and transforms it walks through,
 // and the shapes it compiles into shape kinds (scene/shapes/). Anything else is a user shape.
-using book_hittables = kind_list<hittable_list, bvh_node, translate, rotate_y, transform, rotate, scale, sphere, triangle,
-                                 triangle_mesh, quad, constant_medium>;
+using book_hittables = kind_list<hittable_list, bvh_node, translate, rotate_y, transform, rotate, scale, moving, sphere,
+                                 triangle, triangle_mesh, quad, constant_medium>;
 
 // The materials the material compiler compiles into material kinds (material_compiler.h); anything
 // else is a user material, rendered through its virtual scatter().

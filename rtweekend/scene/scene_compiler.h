@@ -117,6 +117,8 @@ void for_each_child(const hittable& object, F&& f) {
                 if (known.right() && known.right() != known.left()) f(*known.right());
             } else if constexpr (is_transform_class<T>) {
                 if (const hittable* child = transformed_child(known)) f(*child);
+            } else if constexpr (std::is_same_v<T, moving>) {
+                if (known.object()) f(*known.object());
             }
         },
         [](const hittable&) {});
@@ -152,7 +154,8 @@ inline size_t primitive_count(const hittable& object) {
             using T = std::decay_t<decltype(known)>;
             if constexpr (std::is_same_v<T, triangle_mesh>) {
                 return known.faces.size();
-            } else if constexpr (std::is_same_v<T, hittable_list> || std::is_same_v<T, bvh_node> || is_transform_class<T>) {
+            } else if constexpr (std::is_same_v<T, hittable_list> || std::is_same_v<T, bvh_node> || is_transform_class<T> ||
+                                 std::is_same_v<T, moving>) {
                 size_t n = 0;
                 for_each_child(known, [&](const hittable& child) { n += primitive_count(child); });
                 return n;
@@ -323,6 +326,18 @@ class scene_compiler {
         if (child && built_in_only(*child)) return place(*child, xf.then(transform_map(node)));
         add_user_shape(node, xf);
     }
+    // A moving group of built-in shapes: an instance of it whose place shifts with the ray's time
+    // (instance_set.h); over anything else, a user shape as a whole.
+    void add_book(const moving& node, const affine_map& xf) {
+        const hittable* child = node.object().get();
+        if (!child) throw scene_error("moving holds a null object");
+        if (!finite3(node.displacement()))
+            throw scene_error("moving displacement must be finite, got " + point_text(node.displacement()));
+        if (!built_in_only(*child)) return add_user_shape(node, xf);
+        const vec3 motion = xf.vector(node.displacement());
+        if (motion.x() == 0 && motion.y() == 0 && motion.z() == 0) return add(*child, xf);
+        place(*child, xf, motion);
+    }
     void add_book(const sphere& s, const affine_map& xf) { sphere_set::add(*this, s, xf); }
     void add_book(const triangle& t, const affine_map& xf) { triangle_set::add(*this, t, xf); }
     void add_book(const triangle_mesh& mesh, const affine_map& xf) { triangle_set::add(*this, mesh, xf); }
@@ -345,9 +360,16 @@ class scene_compiler {
     // What the compiler made of a subtree it instances: its object (none when everything in it
     // was itself instanced), and the instances inside it, which are placed beside it in the
     // scene (an object holds no instances: two levels, one walk each).
+    // A subtree an object's compiler lifts out to be placed beside the object (object_record):
+    // the map into the object's frame and the motion in it (zero for one that stands still).
+    struct lifted {
+        const hittable* child;
+        affine_map map;
+        vec3 motion;
+    };
     struct object_record {
         uint32_t object = UINT32_MAX;
-        std::vector<std::pair<const hittable*, affine_map>> inner; // subtree, map into this object's frame
+        std::vector<lifted> inner;
     };
     // Subtrees of more primitives than this, named more than once, are instanced; smaller ones
     // are copied (six quads of a box cost less than the walk into an instance).
@@ -370,16 +392,19 @@ class scene_compiler {
         return uses != root_->uses_.end() && uses->second > 1 && primitive_count(child) > flatten_limit;
     }
 
-    // The subtree `child` under the map m (object frame -> this compiler's frame).
-    void place(const hittable& child, const affine_map& m) {
-        if (!must_instance(child, m)) return add(child, m);
+    // The subtree `child` under the map m (object frame -> this compiler's frame), moving by
+    // `motion` (in this compiler's frame) over the shutter interval: a moving subtree is always
+    // an instance.
+    void place(const hittable& child, const affine_map& m, const vec3& motion = vec3(0, 0, 0)) {
+        const bool moves = motion.x() != 0 || motion.y() != 0 || motion.z() != 0;
+        if (!moves && !must_instance(child, m)) return add(child, m);
         if (root_ != this) { // inside an object: the instance goes beside it (object_record)
-            lifted_.push_back({&child, m});
+            lifted_.push_back({&child, m, motion});
             return;
         }
         const object_record record = object_of(child);
-        if (record.object != UINT32_MAX) inputs<instance_set>().push_back({record.object, m});
-        for (const auto& [inner, n] : record.inner) place(*inner, m.then(n));
+        if (record.object != UINT32_MAX) inputs<instance_set>().push_back({record.object, m, vec3f(motion)});
+        for (const lifted& l : record.inner) place(*l.child, m.then(l.map), motion + m.vector(l.motion));
     }
 
     // The object compiled from `child`, once per distinct subtree (by address).
@@ -418,7 +443,7 @@ class scene_compiler {
     scene_compiler* root_; // the scene's compiler (this one, or the one whose object this compiles)
     std::unordered_map<const hittable*, uint32_t> uses_;         // root only: see count_uses
     std::unordered_map<const hittable*, object_record> objects_; // root only: see object_of
-    std::vector<std::pair<const hittable*, affine_map>> lifted_; // an object's: instances inside it
+    std::vector<lifted> lifted_; // an object's: instances inside it
 };
 
 inline void scene_compiler::finish() {
@@ -451,6 +476,7 @@ inline void scene_compiler::finish() {
         K& s = out_.template set<K>();
         s.lay_out(out_, inputs<K>(), out_.bvh.order[size_t(shape_id<K>)]);
         if constexpr (K::moves) out_.has_motion = out_.has_motion || s.size() > 0;
+        if constexpr (std::is_same_v<K, instance_set>) out_.has_motion = out_.has_motion || s.moving_count() > 0;
     });
     // An object's emitters are not light-sampled (compiled_scene::objects), nor are moving ones or
     // user shapes': a path that hits one counts it in full.

@@ -70,6 +70,7 @@ struct instance_set {
     struct input {
         uint32_t object; // in compiled_scene::objects
         affine_map map;
+        vec3f motion{0, 0, 0}; // a moving instance's displacement over the shutter interval (transform.h: moving)
     };
     // The box, in the scene's frame, around the object's: its eight corners mapped, and padded by
     // a few ulps of their magnitude for the float maps the walk uses.
@@ -83,8 +84,17 @@ struct instance_set {
     std::vector<affine3f> to_world;  // object frame -> scene (relative to the scene origin)
     std::vector<affine3f> to_object; // its inverse
     std::vector<uint32_t> object;    // index into compiled_scene::objects
+    // Displacement at time 1 (at time t the instance is moved by t * motion), in the scene's frame;
+    // empty when no instance moves, so that a still scene pays nothing for it.
+    std::vector<vec3f> motion;
 
     size_t count() const { return object.size(); }
+    size_t moving_count() const {
+        size_t n = 0;
+        for (const vec3f& m : motion) n += m.x != 0 || m.y != 0 || m.z != 0;
+        return n;
+    }
+    vec3f shift(uint32_t i, float time) const { return motion.empty() ? vec3f{0, 0, 0} : time * motion[i]; }
 
     void append(const affine3f& world_from_object, const affine3f& object_from_world, uint32_t object_index) {
         to_world.push_back(world_from_object);
@@ -100,7 +110,7 @@ struct instance_set {
         const vec3f d = inv.vector(r.dir);
         scale = length(d);
         if (!(scale > 0) || !std::isfinite(scale)) return false;
-        local.origin = inv.point(r.origin);
+        local.origin = inv.point(motion.empty() ? r.origin : r.origin - shift(i, r.time));
         local.dir = d / scale;
         local.tmin = r.tmin * scale;
         local.tmax = r.tmax * scale;
@@ -157,12 +167,14 @@ template <class Scene>
 box3f instance_set::bounds(const input& in, const Scene& scene) {
     const box3f& b = scene.objects[in.object]->bounds;
     vec3 lo(infinity, infinity, infinity), hi(-infinity, -infinity, -infinity);
+    const vec3 motion(in.motion.x, in.motion.y, in.motion.z);
     for (float x : {b.lo.x, b.hi.x})
         for (float y : {b.lo.y, b.hi.y})
-            for (float z : {b.lo.z, b.hi.z}) {
-                const vec3 corner = in.map.point(vec3(x, y, z)) - scene.origin;
-                for (int c = 0; c < 3; ++c) lo[c] = fmin_inline(lo[c], corner[c]), hi[c] = fmax_inline(hi[c], corner[c]);
-            }
+            for (float z : {b.lo.z, b.hi.z})
+                for (const vec3& shift : {vec3(0, 0, 0), motion}) { // where it starts and where it ends
+                    const vec3 corner = in.map.point(vec3(x, y, z)) - scene.origin + shift;
+                    for (int c = 0; c < 3; ++c) lo[c] = fmin_inline(lo[c], corner[c]), hi[c] = fmax_inline(hi[c], corner[c]);
+                }
     if (!(max_abs(lo) < max_float_extent && max_abs(hi) < max_float_extent))
         throw scene_error("an instance is out of single-precision range: it must be within 1e18 of the camera");
     const double pad = std::ldexp(fmax_inline(max_abs(lo), max_abs(hi)), -20);
@@ -189,7 +201,9 @@ void instance_set::lay_out(const Scene& scene, const std::vector<input>& inputs,
         world.t = vec3f(b);
         local.t = vec3f(c);
         append(world, local, in.object);
+        motion.push_back(in.motion);
     }
+    if (moving_count() == 0) motion.clear(); // a still scene's walk never looks
 }
 
 template <query Q, shape_kind Self, class Scene>
@@ -227,6 +241,7 @@ void instance_set::complete_hit(const Scene& scene, const ray3f& r, float, uint3
     const affine3f& world = to_world[i];
     const affine3f& back = to_object[i];
     hit.p = world.point(inner.p);
+    if (!motion.empty()) hit.p += shift(i, r.time);
     // Normals as gradients, by the inverse transpose; each still faces the ray (the transform
     // keeps which side of the surface a point is on), and front_face carries over.
     hit.normal = normalize(back.transposed(inner.normal));
@@ -247,7 +262,8 @@ void instance_set::complete_hit(const Scene& scene, const ray3f& r, float, uint3
     const vec3f a_p = {std::fabs(a[0][0] * inner.p.x) + std::fabs(a[0][1] * inner.p.y) + std::fabs(a[0][2] * inner.p.z),
                        std::fabs(a[1][0] * inner.p.x) + std::fabs(a[1][1] * inner.p.y) + std::fabs(a[1][2] * inner.p.z),
                        std::fabs(a[2][0] * inner.p.x) + std::fabs(a[2][1] * inner.p.y) + std::fabs(a[2][2] * inner.p.z)};
-    const float out_error = std::ldexp(max_abs_component(a_p) + max_abs_component(world.t), -21);
+    const float out_error =
+        std::ldexp(max_abs_component(a_p) + max_abs_component(world.t) + max_abs_component(shift(i, r.time)), -21);
     const float in_error =
         std::ldexp(back.max_stretch() * max_abs_component(hit.p) + max_abs_component(back.t), -20);
     hit.offset = world.max_stretch() * (inner.offset + in_error) + out_error;
