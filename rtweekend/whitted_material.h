@@ -41,6 +41,9 @@ class whitted_material : public material {
     // d to normalize(d + roughness (xi1 u + xi2 v)), xi uniform in [-1/2, 1/2) and u, v unit and
     // perpendicular to d (course/whitted.h). 0: the ideal ray. The path tracer ignores it.
     double roughness = 0;
+    // Radiance it emits (homework 6's LightMesh and LightSphere): the Whitted integrator adds it to
+    // what the surface reflects, so that rays that hit a light see it. The path tracer ignores it.
+    color radiance{0, 0, 0};
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);

@@ -227,18 +227,18 @@ TEST_CASE("course scene: every element and attribute not read is one warning nam
     std::string text = scene_xml("", "0 0 0",
                                  "<Sphere id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Center>1</Center>"
                                  "<Radius>1</Radius>\n<Textures>1</Textures></Sphere>\n"
-                                 "<LightSphere id=\"2\"><Radiance>1 1 1</Radiance></LightSphere>");
+                                 "<Cylinder id=\"2\"><Radius>1</Radius></Cylinder>");
     text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Renderer>PathTracing</Renderer>");
     whitted_scene s = load_text(text, "warn.xml");
     REQUIRE(s.warnings.size() == 4);
     // Line 3: <Renderer> (the camera then ends on line 7; lights, materials, transformations
     // and vertices take a line each); line 12: the sphere's attribute (not read on spheres), line
-    // 13 its <Textures>; line 14: the light sphere, whose children are not looked at.
+    // 13 its <Textures>; line 14: a cylinder (no homework has one), whose children are not looked at.
     CHECK(s.warnings[0].find("warn.xml:3: <Renderer> is not supported yet and is ignored") != std::string::npos);
     CHECK(s.warnings[1].find("warn.xml:12: <Sphere id=\"1\">: attribute shadingMode=\"smooth\" is not supported yet") !=
           std::string::npos);
     CHECK(s.warnings[2].find("warn.xml:13: <Textures> is not supported yet") != std::string::npos);
-    CHECK(s.warnings[3].find("warn.xml:14: <LightSphere id=\"2\"> is not supported yet") != std::string::npos);
+    CHECK(s.warnings[3].find("warn.xml:14: <Cylinder id=\"2\"> is not supported yet") != std::string::npos);
     // The level-1 test scene has nothing unread.
     CHECK(load_xml_scene(std::string(RTWEEKEND_TEST_DATA) + "/xml/scene.xml").warnings.empty());
     // Many: 20 lines, then one that counts the rest.
@@ -600,6 +600,56 @@ TEST_CASE("course scene: <MotionBlur> moves an object over the shutter, its inst
                                             "</MeshInstance>");
     CHECK(with_instance.pixel(2, 1).x() == 100.0f); // the still instance covers it at every time
     CHECK(with_instance.pixel(1, 1).x() == 0.0f);
+}
+
+TEST_CASE("course scene: a LightMesh and a LightSphere light the floor and are seen as their radiance") {
+    // One pixel seeing the floor point X = (4, 0, 0) from straight above through a tiny plane; the
+    // light's centre is (0, 5, 0): d^2 = 41, and the floor's cos = 5 / d.
+    auto render_point = [](const std::string& vertices, const std::string& objects, int samples,
+                           const std::string& transformations = "") {
+        const std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>4 20 0</Position><Gaze>0 -1 0</Gaze>"
+                                 "<Up>0 0 -1</Up><NearPlane>-0.001 0.001 -0.001 0.001</NearPlane><NearDistance>1</NearDistance>"
+                                 "<ImageResolution>1 1</ImageResolution><ImageName>p.png</ImageName><NumSamples>" +
+                                 std::to_string(samples) + "</NumSamples></Camera></Cameras>"
+                                 "<Materials><Material id=\"1\"><DiffuseReflectance>1 1 1</DiffuseReflectance></Material>"
+                                 "<Material id=\"2\"/></Materials><Transformations>" + transformations + "</Transformations>"
+                                 "<VertexData>-100 0 -100  100 0 -100  100 0 100  -100 0 100  " + vertices + "</VertexData>"
+                                 "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 3 2  1 4 3</Faces></Mesh>" + objects +
+                                 "</Objects></Scene>";
+        const whitted_scene s = load_text(text);
+        CHECK(s.warnings.empty());
+        return render_whitted(s, 0).img.pixel(0, 0).x();
+    };
+    // A LightMesh square of side 0.01 (A = 1e-4) facing down, L = 1e6: L A cos_y cos_x / d^2 =
+    // 100 * (25 / 41) / 41 = 1.4872.
+    const std::string square = "-0.005 5 -0.005  0.005 5 -0.005  0.005 5 0.005  -0.005 5 0.005";
+    const std::string light_mesh = "<LightMesh id=\"1\"><Material>2</Material><Faces>5 6 7  5 7 8</Faces>"
+                                   "<Radiance>1000000 1000000 1000000</Radiance></LightMesh>";
+    CHECK(render_point(square, light_mesh, 1) == doctest::Approx(100.0 * 25 / 41 / 41).epsilon(2e-3));
+    // A LightSphere of radius 0.05, L = 10^4: a sphere wholly above the horizon gives exactly
+    // E = L pi r^2 cos_x / d^2 = 10^4 pi 0.0025 (5 / sqrt 41) / 41 = 1.4958. One point of it per
+    // sample (its far half hidden by itself): about 1.3 / sqrt(N) relative noise, so 40000 samples.
+    const double sphere_expected = 1e4 * 3.14159265358979 * 0.0025 * (5 / std::sqrt(41.0)) / 41;
+    const std::string light_sphere = "<LightSphere id=\"1\"><Material>2</Material><Center>5</Center><Radius>0.05</Radius>"
+                                     "<Radiance>10000 10000 10000</Radiance></LightSphere>";
+    CHECK(render_point("0 5 0", light_sphere, 40000) == doctest::Approx(sphere_expected).epsilon(0.04));
+    // The same sphere as half its size at half the height, scaled by 2 about the origin: the
+    // area density carries the map's stretch J = |det M| |M^-T n| = 8 / 2 = 4.
+    const std::string scaled = "<LightSphere id=\"1\"><Material>2</Material><Center>5</Center><Radius>0.025</Radius>"
+                               "<Radiance>10000 10000 10000</Radiance><Transformations>s1</Transformations></LightSphere>";
+    CHECK(render_point("0 2.5 0", scaled, 40000, "<Scaling id=\"1\">2 2 2</Scaling>") ==
+          doctest::Approx(sphere_expected).epsilon(0.04));
+    // Seen straight on, a light is its radiance (its black material adds nothing).
+    const std::string text = "<Scene><Cameras><Camera id=\"1\"><Position>0 20 0</Position><Gaze>0 -1 0</Gaze>"
+                             "<Up>0 0 -1</Up><NearPlane>-0.0001 0.0001 -0.0001 0.0001</NearPlane><NearDistance>1</NearDistance>"
+                             "<ImageResolution>1 1</ImageResolution><ImageName>p.png</ImageName></Camera></Cameras>"
+                             "<Materials><Material id=\"2\"/></Materials><VertexData>" + square + "</VertexData><Objects>"
+                             "<LightMesh id=\"1\"><Material>2</Material><Faces>1 2 3  1 3 4</Faces>"
+                             "<Radiance>7 8 9</Radiance></LightMesh></Objects></Scene>";
+    const color seen = render_whitted(load_text(text), 0).img.pixel(0, 0);
+    CHECK(seen.x() == doctest::Approx(7));
+    CHECK(seen.y() == doctest::Approx(8));
+    CHECK(seen.z() == doctest::Approx(9));
 }
 
 } // namespace test_course_scene

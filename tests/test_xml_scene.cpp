@@ -316,7 +316,7 @@ TEST_CASE("xml scene: comments, CRLF, one line and element order do not change t
     later.replace(later.find("<Objects>"), 9,
                   "<Transformations><Translation id=\"1\">1 2 3</Translation></Transformations>"
                   "<Textures><Images><Image id=\"1\">x.jpg</Image></Images></Textures><Objects>"
-                  "<LightSphere id=\"9\"><Material>1</Material><Transformations>t1</Transformations></LightSphere>");
+                  "<Cylinder id=\"9\"><Material>1</Material><Transformations>t1</Transformations></Cylinder>");
     later.replace(later.find("<PointLight id=\"1\">"), 19,
                   "<SphericalDirectionalLight id=\"5\"><ImageId>1</ImageId></SphericalDirectionalLight><PointLight id=\"1\">");
 

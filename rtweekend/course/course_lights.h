@@ -16,11 +16,23 @@
 //   area_light         an invisible square of edge `size` centred at `position`, perpendicular to
 //                      `normal`, of radiance L, two-sided: one uniform point y on it per sample,
 //                      E = L size^2 |n_l . w_i| / |y - x|^2 (homework 3; section 6.1)
+//   light_mesh         <LightMesh> (homework 6): triangles (world space) of radiance L, which the
+//                      scene also holds as geometry (camera rays that hit it see L); one point y
+//                      per shading, uniform over the area A: E = L A |n_y . w_i| / |y - x|^2
+//   light_sphere       <LightSphere> (homework 6): a sphere (centre, radius) under an affine map
+//                      (an ellipsoid when it scales unevenly) of radiance L, also in the scene as
+//                      geometry: y uniform over the object sphere, carried out by the map, whose
+//                      area density is 1 / (4 pi r^2 J), J = |det M| |M^-T n| the map's stretch
+//                      of area there: E = L max(0, n_y . w_i) 4 pi r^2 J / |y - x|^2 (the far
+//                      side is hidden by the sphere itself)
 
 #include "../color.h"
+#include "../transform.h"
 #include "../vec3.h"
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace rt {
 
@@ -66,10 +78,25 @@ struct area_light {
     color radiance;
 };
 
+struct light_mesh {
+    std::vector<std::array<point3, 3>> triangles; // world space
+    color radiance;
+};
+
+struct light_sphere {
+    point3 center; // object space, as the file gives them
+    double radius = 0;
+    mat3 linear;   // then x -> linear x + offset
+    vec3 offset{0, 0, 0};
+    color radiance;
+};
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::area_light;
 using rt::directional_light;
+using rt::light_mesh;
+using rt::light_sphere;
 using rt::spot_light;
 #endif

@@ -101,6 +101,7 @@ struct whitted_terms {
     vec3f ambient{0, 0, 0}, specular{0, 0, 0};
     float phong_exponent = 1;
     float roughness = 0; // tilts the mirror and glass rays (whitted_material::roughness)
+    vec3f emission{0, 0, 0}; // what a light object emits (whitted_material::radiance)
 
     static whitted_terms of(const compiled_material& m);
 };
@@ -158,15 +159,31 @@ class whitted_renderer {
     std::vector<whitted_terms> terms_; // by compiled material index
     // A light as shade() asks it (course_lights.h has the formulas).
     struct light_f {
-        enum kind_t { point, directional, spot, area } kind = point;
+        enum kind_t { point, directional, spot, area, mesh, sphere } kind = point;
         vec3f position;  // relative to the compiled scene's origin: point, spot, area (its centre)
         vec3f intensity; // I (point, spot) or radiance (directional, area)
         vec3f axis;      // unit: towards the light (directional), the cone's axis (spot), the normal (area)
         vec3f edge_u, edge_v; // area: the square's edges, each of length size
         float square_area = 0;
         spot_light cone;  // spot: the fall-off
+        uint32_t object = 0; // mesh, sphere: index into mesh_lights_ or sphere_lights_
     };
     std::vector<light_f> lights_;
+    // A LightMesh: its triangles relative to the scene's origin, the running sum of their areas
+    // (to pick one by area), and the whole area.
+    struct mesh_light_f {
+        std::vector<vec3f> a, e1, e2;
+        std::vector<double> cumulative_area;
+        double area = 0;
+    };
+    std::vector<mesh_light_f> mesh_lights_;
+    // A LightSphere: its object-space sphere and the map out (in double: light_sphere's).
+    struct sphere_light_f {
+        vec3 center, offset; // offset relative to the scene's origin
+        double radius = 0, det = 1;
+        mat3 linear, normal_map; // M and M^-T
+    };
+    std::vector<sphere_light_f> sphere_lights_;
 };
 
 // Renders camera `camera_index` of the scene.
@@ -203,6 +220,7 @@ RTWEEKEND_ENGINE_FUNCTION std::string write_course_image(const std::string& path
 #include "../scene/validate.h"
 #include "../whitted_material.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -221,6 +239,7 @@ RTWEEKEND_ENGINE_FUNCTION whitted_terms whitted_terms::of(const compiled_materia
         t.specular = vec3f(w->specular);
         t.phong_exponent = static_cast<float>(w->phong_exponent);
         t.roughness = static_cast<float>(w->roughness);
+        t.emission = vec3f(w->radiance);
     }
     return t;
 }
@@ -274,6 +293,44 @@ RTWEEKEND_ENGINE_FUNCTION whitted_renderer::whitted_renderer(const whitted_scene
         f.axis = vec3f(unit_direction(l.direction, "spot light direction"));
         f.intensity = vec3f(l.intensity);
         f.cone = l;
+        lights_.push_back(f);
+    }
+    for (const light_mesh& l : scene.light_meshes) {
+        check_color(l.radiance, "light mesh radiance");
+        mesh_light_f m;
+        for (const auto& t : l.triangles) {
+            const vec3 e1 = t[1] - t[0], e2 = t[2] - t[0];
+            const double area = 0.5 * cross(e1, e2).length();
+            if (!(area > 0) || !std::isfinite(area)) continue; // a degenerate triangle emits nothing
+            m.a.push_back(vec3f(t[0] - compiled->origin));
+            m.e1.push_back(vec3f(e1));
+            m.e2.push_back(vec3f(e2));
+            m.area += area;
+            m.cumulative_area.push_back(m.area);
+        }
+        if (m.a.empty()) continue;
+        light_f f;
+        f.kind = light_f::mesh;
+        f.intensity = vec3f(l.radiance);
+        f.object = uint32_t(mesh_lights_.size());
+        mesh_lights_.push_back(std::move(m));
+        lights_.push_back(f);
+    }
+    for (const light_sphere& l : scene.light_spheres) {
+        check_color(l.radiance, "light sphere radiance");
+        sphere_light_f s;
+        s.center = l.center;
+        s.radius = l.radius;
+        s.linear = l.linear;
+        s.det = std::fabs(l.linear.determinant());
+        s.normal_map = l.linear.inverse().transpose();
+        s.offset = l.offset - compiled->origin;
+        if (!(s.radius > 0) || !(s.det > 0) || !std::isfinite(s.det)) throw scene_error("light sphere must have a positive radius and an invertible map");
+        light_f f;
+        f.kind = light_f::sphere;
+        f.intensity = vec3f(l.radiance);
+        f.object = uint32_t(sphere_lights_.size());
+        sphere_lights_.push_back(s);
         lights_.push_back(f);
     }
     for (const area_light& l : scene.area_lights) {
@@ -332,9 +389,33 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, 
             shadow.dir = l;
         } else {
             vec3f at = light.position;
+            vec3f emitter_normal{0, 0, 0};
+            float emitter_scale = 0; // mesh, sphere: the reciprocal of y's area density
             if (light.kind == light_f::area) {
                 const float xi1 = rng.next_float() - 0.5f, xi2 = rng.next_float() - 0.5f;
                 at = light.position + xi1 * light.edge_u + xi2 * light.edge_v;
+            } else if (light.kind == light_f::mesh) {
+                // A triangle by area, then a uniform point on it.
+                const mesh_light_f& m = mesh_lights_[light.object];
+                const double pick = rng.next_double() * m.area;
+                const size_t k = std::min(m.a.size() - 1, size_t(std::upper_bound(m.cumulative_area.begin(),
+                                                                                   m.cumulative_area.end(), pick) -
+                                                                  m.cumulative_area.begin()));
+                const float su = std::sqrt(rng.next_float()), xi = rng.next_float();
+                const float b1 = su * (1 - xi), b2 = su * xi; // weights of the edges e1 and e2
+                at = m.a[k] + b1 * m.e1[k] + b2 * m.e2[k];
+                emitter_normal = normalize(cross(m.e1[k], m.e2[k]));
+                emitter_scale = float(m.area);
+            } else if (light.kind == light_f::sphere) {
+                // A uniform direction on the object's sphere, carried out by the map.
+                const sphere_light_f& s = sphere_lights_[light.object];
+                const double z = 1 - 2 * rng.next_double(), phi = 2 * pi * rng.next_double();
+                const double rxy = std::sqrt(fmax_inline(0.0, 1 - z * z));
+                const vec3 dir(rxy * std::cos(phi), rxy * std::sin(phi), z);
+                const vec3 n = s.normal_map * dir; // M^-T n: the world normal, unnormalised
+                at = vec3f(s.linear * (s.center + s.radius * dir) + s.offset);
+                emitter_normal = vec3f(unit_vector(n));
+                emitter_scale = float(4 * pi * s.radius * s.radius * s.det * n.length()); // 4 pi r^2 J
             }
             vec3f to_light = at - hit.p;
             float d2 = dot(to_light, to_light);
@@ -347,11 +428,20 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, 
                 E = s * E;
             } else if (light.kind == light_f::area) {
                 E = (light.square_area * std::fabs(dot(light.axis, l))) * E; // L A |n_l . w_i| / d^2, two-sided
+            } else if (light.kind == light_f::mesh) {
+                E = (emitter_scale * std::fabs(dot(emitter_normal, l))) * E; // L A |n_y . w_i| / d^2
+            } else if (light.kind == light_f::sphere) {
+                const float cos_y = -dot(emitter_normal, l); // the sphere emits outwards
+                if (!(cos_y > 0)) continue;
+                E = (emitter_scale * cos_y) * E;
             }
-            // Shadow ray towards the light; only something closer than the light blocks it.
+            // Shadow ray towards the light; only something closer than the light blocks it (a
+            // light object's own surface at y is left out, a little short of it).
             vec3f to_light_from_origin = at - shadow.origin;
             shadow.tmax = length(to_light_from_origin);
             shadow.dir = to_light_from_origin / shadow.tmax;
+            if (light.kind == light_f::mesh || light.kind == light_f::sphere)
+                shadow.tmax -= shadow_ray_epsilon_ + 1e-4f * shadow.tmax;
         }
         ++rays;
         if (compiled_->occluded(shadow)) continue;
@@ -388,6 +478,7 @@ RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::open(const surface_hit& hit, co
     // no ambient, diffuse or specular term there, and so no shadow rays.
     const bool from_inside_glass = m.refracts() && !hit.front_face;
     f.L = from_inside_glass && !w.shade_inside_dielectrics ? vec3f{0, 0, 0} : shade(hit, r, m, terms, rng, rays);
+    if (terms.emission.x != 0 || terms.emission.y != 0 || terms.emission.z != 0) f.L += terms.emission; // a light object
     f.count = f.taken = 0;
     if (depth >= max_recursion_depth_) return;
 

@@ -36,6 +36,8 @@ struct whitted_scene {
     std::vector<directional_light> directional_lights; // course_lights.h
     std::vector<spot_light> spot_lights;
     std::vector<area_light> area_lights;
+    std::vector<light_mesh> light_meshes;   // also in `world`, with emitting materials
+    std::vector<light_sphere> light_spheres;
     std::vector<view_camera> cameras;
     hittable_list world;                // spheres, triangles and meshes with whitted_material materials
     // The files the scene was read from (load_xml_scene): the XML file, then its PLY meshes. Empty

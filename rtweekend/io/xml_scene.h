@@ -51,12 +51,14 @@
 // course/course_lights.h. A camera's <Tonemap> (homework 5: TMO Photographic, TMOOptions key and
 // burn, Saturation, Gamma) writes its image linear and tone mapped (write_course_image).
 //
+// <LightMesh> and <LightSphere> (homework 6): a Mesh or Sphere with a <Radiance>, seen by the rays
+// that hit it and sampled as a light (course_lights.h: light_mesh, light_sphere).
 // <MotionBlur>x y z</MotionBlur> on a Mesh, Sphere or MeshInstance moves it by t (x, y, z) at the
 // ray's time t, after its transformations (transform.h: moving); cameras with NumSamples give each
 // sample its own time.
 //
 // Not read yet (later homeworks): textures and <TexCoordData>, environment lights,
-// BRDFs, light objects and renderers. Each such element, and any other the lists
+// BRDFs and renderers. Each such element, and any other the lists
 // above do not name, and any attribute they do not name, is one warning
 // (whitted_scene::warnings: "scene.xml:12: <TexCoordData> is not supported yet and is ignored"; at
 // most 20, then a count of the rest); the scene renders without it. <VertexData binaryFile> is
@@ -888,11 +890,52 @@ class xml_scene_reader {
                     double radius = bounded(child(o, "Radius", true), owner, 0, true);
                     scene.world.add(
                         blurred(o, owner, place(std::make_shared<sphere>(c, radius, mat), object_transform(o, owner))));
+                } else if (name == "LightMesh" || name == "LightSphere") {
+                    mark(o);
+                    read_light_object(o, owner, name == "LightMesh", scene);
                 }
-                // Anything else (light objects, ...) belongs to a later homework: warned about.
+                // Anything else belongs to a later homework: warned about.
             }
         }
         for (const auto& key : single_order) scene.world.add(place(single[key], single_transform[key]));
+    }
+
+    // <LightMesh> and <LightSphere> (homework 6): a Mesh or Sphere with a <Radiance> L. The shape
+    // goes into the world in a copy of its material that emits L (seen by the rays that hit it), and
+    // into the scene's light list, which the Whitted integrator samples (course_lights.h).
+    void read_light_object(node o, const std::string& owner, bool is_mesh, whitted_scene& scene) {
+        const color radiance = colour(child(o, "Radiance", true), owner);
+        const affine_map m = object_transform(o, owner);
+        auto emitting = [&](const std::shared_ptr<material>& given) {
+            auto copy = std::make_shared<whitted_material>(*std::static_pointer_cast<whitted_material>(given));
+            copy->radiance = radiance;
+            return copy;
+        };
+        if (is_mesh) {
+            std::shared_ptr<triangle_mesh> mesh = read_mesh(o, owner, remap_);
+            mesh->mat = emitting(mesh->mat);
+            light_mesh light;
+            light.radiance = radiance;
+            for (const auto& f : mesh->faces)
+                light.triangles.push_back({m.point(mesh->positions[f[0]]), m.point(mesh->positions[f[1]]),
+                                           m.point(mesh->positions[f[2]])});
+            scene.light_meshes.push_back(std::move(light));
+            scene.world.add(place(mesh, m));
+            return;
+        }
+        auto mat = emitting(material_of(o, owner));
+        node center = child(o, "Center", true);
+        const long long id = integer(center, owner);
+        const point3 c = vertices_[vertex_index(id, center, owner, "<Center> vertex " + std::to_string(id))];
+        const double radius = bounded(child(o, "Radius", true), owner, 0, true);
+        light_sphere light;
+        light.center = c;
+        light.radius = radius;
+        light.linear = m.m;
+        light.offset = m.t;
+        light.radiance = radiance;
+        scene.light_spheres.push_back(light);
+        scene.world.add(place(std::make_shared<sphere>(c, radius, mat), m));
     }
 
     // A mesh's raw geometry (with the material its <Mesh> gives), where it is placed and the
