@@ -16,6 +16,7 @@
 #include "test_helpers.h"
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -650,6 +651,54 @@ TEST_CASE("course scene: a LightMesh and a LightSphere light the floor and are s
     CHECK(seen.x() == doctest::Approx(7));
     CHECK(seen.y() == doctest::Approx(8));
     CHECK(seen.z() == doctest::Approx(9));
+}
+
+TEST_CASE("course scene: binary vertex and face files read as their text twins") {
+    test::scratch_dir dir("binary_geometry");
+    auto le32 = [](uint32_t v) {
+        std::string b(4, '\0');
+        for (int k = 0; k < 4; ++k) b[size_t(k)] = char((v >> (8 * k)) & 0xff);
+        return b;
+    };
+    auto f32 = [&](float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return le32(u);
+    };
+    // Four vertices and two faces (ids from 1, as the text's).
+    const float xyz[] = {-1, -1, -3, 1, -1, -3, 1, 1, -3, -1, 1, -3.5f};
+    std::string vertices = le32(4);
+    for (float c : xyz) vertices += f32(c);
+    std::string faces = le32(2);
+    for (uint32_t i : {1u, 2u, 3u, 1u, 3u, 4u}) faces += le32(i);
+    dir.write("v.bin", vertices);
+    dir.write("f.bin", faces);
+    auto scene_text = [](const std::string& vertex_data, const std::string& face_data) {
+        return std::string("<Scene>") + camera_xml + "<Materials><Material id=\"1\"><DiffuseReflectance>1 1 1</DiffuseReflectance>"
+               "</Material></Materials>" + vertex_data + "<Objects><Mesh id=\"1\"><Material>1</Material>" + face_data +
+               "</Mesh></Objects></Scene>";
+    };
+    const whitted_scene binary =
+        load_xml_scene(dir.write("binary.xml", scene_text("<VertexData binaryFile=\"v.bin\"/>", "<Faces binaryFile=\"f.bin\"/>")));
+    const whitted_scene text = load_xml_scene(
+        dir.write("text.xml", scene_text("<VertexData>-1 -1 -3 1 -1 -3 1 1 -3 -1 1 -3.5</VertexData>", "<Faces>1 2 3 1 3 4</Faces>")));
+    auto mesh = [](const whitted_scene& s) {
+        REQUIRE(s.world.objects.size() == 1);
+        auto m = std::dynamic_pointer_cast<triangle_mesh>(s.world.objects[0]);
+        REQUIRE(m);
+        return m;
+    };
+    REQUIRE(mesh(binary)->positions.size() == 4);
+    for (size_t k = 0; k < 4; ++k) CHECK(same(mesh(binary)->positions[k], mesh(text)->positions[k]));
+    CHECK(mesh(binary)->faces == mesh(text)->faces);
+    CHECK(binary.warnings.empty());
+    CHECK(binary.files.size() == 3); // the scene and both binary files
+    // A file whose size does not match its count, and one that is missing: one line each.
+    dir.write("short.bin", le32(3) + f32(1));
+    const std::string short_error = error_of(scene_text("<VertexData binaryFile=\"" + dir.file("short.bin") + "\"/>", "<Faces>1 2 3</Faces>"));
+    CHECK(short_error.find("holds 8 bytes, but its count 3 needs 4 + 12 x count") != std::string::npos);
+    CHECK(error_of(scene_text("<VertexData binaryFile=\"" + dir.file("none.bin") + "\"/>", "<Faces>1 2 3</Faces>"))
+              .find("cannot") != std::string::npos);
 }
 
 } // namespace test_course_scene
