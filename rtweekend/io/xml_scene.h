@@ -1021,7 +1021,7 @@ class xml_scene_reader {
             fail(o, owner, "baseMeshId " + std::to_string(base_id) + " leads back to this instance: a cycle");
         // Each link is a call: a chain as long as a hostile file likes would overflow the stack
         // (the course's longest is 8).
-        constexpr size_t max_chain = 1000;
+        constexpr size_t max_chain = 256;
         if (visiting.size() > max_chain)
             fail(o, owner, "a chain of more than " + std::to_string(max_chain) + " instances of instances");
         placed_mesh base;
