@@ -326,6 +326,12 @@ TEST_CASE("course scene: the JSON form reads as its XML twin and renders the sam
           std::string::npos);
     CHECK(error_of("[1, 2]", "top.json").find("top.json: the JSON scene must be an object holding \"Scene\"") !=
           std::string::npos);
+    // A number beyond a double (nlohmann's out_of_range, which a fuzzer found escaping as an
+    // exception of another kind): one line, no more than a prefix of the token.
+    const std::string huge = error_of("{\"Scene\": {\"MaxRecursionDepth\": 1e" + std::string(300, '9') + "}}", "huge.json");
+    CHECK(huge.find("huge.json: malformed JSON: ") != std::string::npos);
+    CHECK(huge.size() < 300);
+    CHECK(huge.find('\n') == std::string::npos);
     std::string bad_radius = json;
     bad_radius.replace(bad_radius.find("\"Radius\": \"0.5\""), 15, "\"Radius\": \"-2\"");
     const std::string m = error_of(bad_radius, "radius.json");

@@ -254,6 +254,11 @@ TEST_CASE("fuzz: OBJ text is checked before tinyobjloader sees it") {
 
 // --- 6. XML scenes -----------------------------------------------------------------------------------
 
+TEST_CASE("fuzz: a JSON number beyond a double is one error line (json_scene's finding)") {
+    check_refused([] { load_xml_scene(fuzz_dir + "json_number_overflow.json"); },
+                  {"json_number_overflow.json: malformed JSON: number overflow parsing '8888880E"});
+}
+
 TEST_CASE("fuzz: XML vertex ids and vertexOffset near the 64-bit limits") {
     check_refused([] { load_xml_scene(fuzz_dir + "vertex_offset_overflow.xml"); },
                   {"<Faces> vertex 1 + vertexOffset 9223372036854775807 overflows a 64-bit integer"});

@@ -45,11 +45,13 @@ class course_json_translator {
         } catch (const nlohmann::json::parse_error& e) {
             // nlohmann's message starts "[json.exception.parse_error.101] parse error at line L,
             // column C: "; the line is counted here, and the rest kept.
-            std::string reason = e.what();
-            if (size_t colon = reason.find(": "); colon != std::string::npos) reason = reason.substr(colon + 2);
             const size_t at = e.byte == 0 ? 0 : std::min<size_t>(e.byte - 1, text_.size());
             const size_t line = text_.empty() ? 1 : line_index(text_).line_of(std::min(at, text_.size() - 1));
-            throw scene_error(one_line(path_ + ":" + std::to_string(line) + ": malformed JSON: " + reason));
+            throw scene_error(one_line(path_ + ":" + std::to_string(line) + ": malformed JSON: " + reason_of(e)));
+        } catch (const nlohmann::json::exception& e) {
+            // Any other of nlohmann's refusals (a number beyond a double: out_of_range.406), which
+            // carries no position.
+            throw scene_error(one_line(path_ + ": malformed JSON: " + reason_of(e)));
         }
         if (!root.is_object() || !root.contains("Scene") || !root["Scene"].is_object())
             fail("the JSON scene must be an object holding \"Scene\": {...}");
@@ -63,6 +65,19 @@ class course_json_translator {
     const std::string& path_;
 
     [[noreturn]] void fail(const std::string& problem) const { throw scene_error(one_line(path_ + ": " + problem)); }
+
+    // nlohmann's message without its "[json.exception.KIND.N] ... : " prefix, at most 160
+    // characters (it quotes the token it stopped at, which a file may make as long as it likes).
+    static std::string reason_of(const nlohmann::json::exception& e) {
+        std::string reason = e.what();
+        if (size_t colon = reason.find(": "); colon != std::string::npos && reason.compare(0, 1, "[") == 0)
+            reason = reason.substr(colon + 2);
+        else if (size_t bracket = reason.find("] "); bracket != std::string::npos && reason.compare(0, 1, "[") == 0)
+            reason = reason.substr(bracket + 2);
+        constexpr size_t max_reason = 160;
+        if (reason.size() > max_reason) reason = reason.substr(0, max_reason) + "... (" + std::to_string(reason.size()) + " characters)";
+        return reason;
+    }
 
     std::string scalar_text(const nlohmann::ordered_json& v) const {
         if (v.is_null()) return "";
