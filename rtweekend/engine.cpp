@@ -11,3 +11,4 @@
 #define RTWEEKEND_ENGINE_TU
 #include "rtweekend.h"
 #include "scene/scene_compiler.h"
+#include "io/xml_scene.h"

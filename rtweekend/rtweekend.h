@@ -34,7 +34,9 @@
 // scene/scene_compiler.h (compile_scene and the compiled scene's definition, for programs that
 // compile a scene once and render it from several cameras: a book main needs neither, and every
 // main that links the engine would pay half a second to parse them), image/image_read.h,
-// measure/metrics.h and io/ray_file.h, which serve the measuring tools only.
+// measure/metrics.h and io/ray_file.h, which serve the measuring tools only; io/xml_scene.h
+// (the course's XML and JSON scenes: pugixml and nlohmann/json, whose parsing alone is about 2 s
+// of every header-only compile; the course programs include it).
 #include "render/path_tracer.h"
 #include "course/whitted.h"
 #include "core/file.h"
@@ -42,7 +44,6 @@
 #include "io/obj.h"
 #include "io/ply.h"
 #include "io/scene_file.h"
-#include "io/xml_scene.h"
 
 #include <cmath>
 #include <iostream>
