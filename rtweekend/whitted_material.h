@@ -23,6 +23,8 @@
 #include "core/vec3f.h"
 #include "material.h"
 
+#include <optional>
+
 namespace rt {
 
 class whitted_material : public material {
@@ -44,6 +46,22 @@ class whitted_material : public material {
     // Radiance it emits (homework 6's LightMesh and LightSphere): the Whitted integrator adds it to
     // what the surface reflects, so that rays that hit a light see it. The path tracer ignores it.
     color radiance{0, 0, 0};
+    // BRDF (homework 6): the model of a <Material BRDF="k"> (core/materials/course_brdf_bsdf.h; its
+    // colours and indices are taken from this material by course_brdf()). It replaces the course's
+    // Blinn-Phong shading (diffuse and specular) in every renderer; the ambient term stays. On a
+    // mirror, conductor or dielectric the Whitted integrator shades with it and follows the delta
+    // lobe as before; the path tracers keep a Lambertian base there.
+    std::optional<course_brdf_bsdf> brdf;
+
+    // The BRDF's record with this material's kd, ks, refraction and absorption index.
+    course_brdf_bsdf course_brdf() const {
+        course_brdf_bsdf b = brdf.value_or(course_brdf_bsdf{});
+        b.kd = vec3f(diffuse);
+        b.ks = vec3f(specular);
+        b.eta = static_cast<float>(refraction_index);
+        b.k = static_cast<float>(absorption_index);
+        return b;
+    }
 
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
@@ -64,6 +82,7 @@ class whitted_material : public material {
         compiled_material m;
         switch (effective_kind()) {
         case kind_t::plain:
+            if (brdf) return compiled_material::of(course_brdf(), this);
             if (glossy && (specular.x() > 0 || specular.y() > 0 || specular.z() > 0))
                 return blinn_phong::contract(diffuse, specular, phong_exponent, this);
             return compiled_material::of(lambertian_bsdf{vec3f(diffuse)}, this);

@@ -229,13 +229,13 @@ TEST_CASE("course scene: every element and attribute not read is one warning nam
                                  "<Sphere id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Center>1</Center>"
                                  "<Radius>1</Radius>\n<Textures>1</Textures></Sphere>\n"
                                  "<Cylinder id=\"2\"><Radius>1</Radius></Cylinder>");
-    text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Renderer>PathTracing</Renderer>");
+    text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Exposure>2</Exposure>");
     whitted_scene s = load_text(text, "warn.xml");
     REQUIRE(s.warnings.size() == 4);
-    // Line 3: <Renderer> (the camera then ends on line 7; lights, materials, transformations
+    // Line 3: <Exposure>, which no homework has (the camera then ends on line 7; lights, materials, transformations
     // and vertices take a line each); line 12: the sphere's attribute (not read on spheres), line
     // 13 its <Textures>; line 14: a cylinder (no homework has one), whose children are not looked at.
-    CHECK(s.warnings[0].find("warn.xml:3: <Renderer> is not supported yet and is ignored") != std::string::npos);
+    CHECK(s.warnings[0].find("warn.xml:3: <Exposure> is not supported yet and is ignored") != std::string::npos);
     CHECK(s.warnings[1].find("warn.xml:12: <Sphere id=\"1\">: attribute shadingMode=\"smooth\" is not supported yet") !=
           std::string::npos);
     CHECK(s.warnings[2].find("warn.xml:13: <Textures> is not supported yet") != std::string::npos);

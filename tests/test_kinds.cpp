@@ -147,6 +147,16 @@ compiled_material example(kind_tag<plastic_bsdf>) {
 compiled_material example(kind_tag<blinn_phong_bsdf>) {
     return compiled_material::of(blinn_phong_bsdf{{0.4f, 0.4f, 0.4f}, {0.5f, 0.5f, 0.5f}, 30});
 }
+compiled_material example(kind_tag<course_brdf_bsdf>) {
+    course_brdf_bsdf b;
+    b.model = course_brdf_bsdf::model_t::torrance_sparrow;
+    b.kd = {0.3f, 0.3f, 0.3f};
+    b.ks = {0.6f, 0.5f, 0.4f};
+    b.exponent = 40;
+    b.eta = 0.2f;
+    b.k = 3;
+    return compiled_material::of(b);
+}
 compiled_material example(kind_tag<user_bsdf>) { return compiled_material::of(user_bsdf{}); }
 
 template <class K>

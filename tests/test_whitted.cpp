@@ -12,6 +12,7 @@
 // Every asserted byte must be within +-1 of the truncated hand value (the course's tolerance),
 // except where a test is about the exact 8-bit encoding itself.
 
+#include <rtweekend/sphere.h>
 #include <rtweekend/io/xml_scene.h>
 #include <rtweekend/course/whitted.h>
 

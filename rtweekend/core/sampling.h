@@ -80,4 +80,16 @@ RTWEEKEND_FORCE_INLINE vec3f sample_cosine_direction(const vec3f& n, float u1, f
     return (r * circle.x) * e1 + (r * circle.y) * e2 + height * n;
 }
 
+// A direction about the unit axis a with the density of a Phong lobe, (p + 1) / (2 pi) cos^p of
+// the angle to a over the sphere: cos = u1^(1 / (p + 1)), the azimuth from u2. Unit up to rounding
+// (not renormalised). The Blinn-Phong half vector and the course's Phong lobe draw from it.
+RTWEEKEND_FORCE_INLINE vec3f sample_cosine_power(const vec3f& a, float exponent, float u1, float u2) {
+    const float c = std::pow(u1, 1.0f / (exponent + 1.0f));
+    const float s = std::sqrt(fmax_inline(0.0f, 1.0f - c * c));
+    vec3f e1, e2;
+    frame_across(a, e1, e2);
+    const vec3f circle = unit_circle(u2);
+    return (s * circle.x) * e1 + (s * circle.y) * e2 + c * a;
+}
+
 } // namespace rt

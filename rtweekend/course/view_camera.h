@@ -35,6 +35,14 @@ struct view_camera {
     // photographic operator (image/tonemap.h); write_course_image (course/whitted.h) writes both.
     bool tonemapped = false;
     photographic_tonemap tonemap;
+    // <Renderer>PathTracing</Renderer> (homework 6): the course's path tracer instead of the classic
+    // recursive one (course/whitted.h, "The course's path tracer"), with the <RendererParams> it
+    // names: next-event estimation, cosine-weighted (rather than uniform) hemisphere sampling, and
+    // Russian roulette (which lifts the depth limit).
+    struct path_tracing_t {
+        bool on = false;
+        bool next_event_estimation = false, importance_sampling = false, russian_roulette = false;
+    } path_tracing;
 };
 
 // The frame of a CENG795 course camera (above): the image plane at near_distance along

@@ -62,6 +62,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,10 @@ struct whitted_terms {
     float phong_exponent = 1;
     float roughness = 0; // tilts the mirror and glass rays (whitted_material::roughness)
     vec3f emission{0, 0, 0}; // what a light object emits (whitted_material::radiance)
+    // A material with a BRDF (homework 6): its f cos theta_i replaces the diffuse and specular
+    // terms under every light (whitted_material::brdf).
+    bool has_brdf = false;
+    course_brdf_bsdf brdf;
 
     static whitted_terms of(const compiled_material& m);
 };
@@ -146,7 +151,21 @@ class whitted_renderer {
     void open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng, uint64_t& rays, frame& f,
               const whitted_settings& w) const;
     vec3f shade(const surface_hit& hit, const ray3f& r, const compiled_material& m, const whitted_terms& terms,
-                pcg32& rng, uint64_t& rays) const;
+                pcg32& rng, uint64_t& rays, bool ambient = true) const;
+    // The course's f(wo, wi) cos theta_i of a material: what shade() multiplies a light's E by.
+    static vec3f course_f_cos(const compiled_material& m, const whitted_terms& terms, const vec3f& wo, const vec3f& wi,
+                              const shading_point& sp);
+    // The material at a hit (a user shape's own, a texture's colour looked up) and its terms.
+    struct hit_material {
+        std::optional<compiled_material> reported, looked_up;
+        std::optional<whitted_terms> reported_terms;
+        const compiled_material* m = nullptr;
+        const whitted_terms* terms = nullptr;
+    };
+    void material_at(const surface_hit& hit, hit_material& out) const;
+    // The course's path tracer (homework 6): the radiance arriving along a camera ray.
+    vec3f trace_path(const ray3f& r, pcg32& rng, uint64_t& rays, const view_camera::path_tracing_t& pt,
+                     const whitted_settings& w) const;
     ray3f spawn(const surface_hit& hit, const vec3f& side, const vec3f& dir) const;
 
     // What rendering needs of the scene besides its geometry, copied: the renderer does not
@@ -213,6 +232,7 @@ RTWEEKEND_ENGINE_FUNCTION std::string write_course_image(const std::string& path
 
 #include "../core/input_limits.h"
 #include "../core/ray_offset.h"
+#include "../core/sampling.h"
 #include "../image/image_write.h"
 #include "../scene/compiled_scene.h"
 #include "../scene/scene_compiler.h"
@@ -225,7 +245,6 @@ RTWEEKEND_ENGINE_FUNCTION std::string write_course_image(const std::string& path
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 namespace rt {
 
@@ -240,6 +259,11 @@ RTWEEKEND_ENGINE_FUNCTION whitted_terms whitted_terms::of(const compiled_materia
         t.phong_exponent = static_cast<float>(w->phong_exponent);
         t.roughness = static_cast<float>(w->roughness);
         t.emission = vec3f(w->radiance);
+        if (w->brdf) {
+            t.has_brdf = true;
+            t.brdf = w->course_brdf();
+            t.specular = {0, 0, 0};
+        }
     }
     return t;
 }
@@ -371,10 +395,18 @@ RTWEEKEND_ENGINE_FUNCTION ray3f whitted_renderer::spawn(const surface_hit& hit, 
 // Ambient, plus what every light the point sees adds: its irradiance E (course_lights.h) times
 // the material's eval towards the light and the course's Blinn-Phong specular term. An area light
 // is sampled at one point per call (two random numbers each; the other lights draw none).
+RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::course_f_cos(const compiled_material& m, const whitted_terms& terms,
+                                                               const vec3f& wo, const vec3f& wi, const shading_point& sp) {
+    if (terms.has_brdf) return terms.brdf.course_value(wo, wi, sp.n);
+    const vec3f h = normalize(wi + wo);
+    const float specular = std::pow(fmax_inline(0.0f, dot(sp.n, h)), terms.phong_exponent);
+    return pi_f * m.eval(wo, wi, sp) + specular * terms.specular;
+}
+
 RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r,
                                                         const compiled_material& m, const whitted_terms& terms,
-                                                        pcg32& rng, uint64_t& rays) const {
-    vec3f L = terms.ambient * ambient_light_;
+                                                        pcg32& rng, uint64_t& rays, bool ambient) const {
+    vec3f L = ambient ? terms.ambient * ambient_light_ : vec3f{0, 0, 0};
     if (lights_.empty()) return L;
     const vec3f n = hit.shading_normal, v = -r.dir;
     const shading_point sp{n, hit.front_face};
@@ -445,9 +477,7 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, 
         }
         ++rays;
         if (compiled_->occluded(shadow)) continue;
-        vec3f h = normalize(l + v);
-        float specular = std::pow(fmax_inline(0.0f, dot(n, h)), terms.phong_exponent);
-        L += E * (pi_f * m.eval(v, l, sp) + specular * terms.specular);
+        L += E * course_f_cos(m, terms, v, l, sp);
     }
     return L;
 }
@@ -457,23 +487,27 @@ RTWEEKEND_ENGINE_FUNCTION bool whitted_renderer::intersect(const ray3f& r, surfa
     return w.cull_back_faces ? compiled_->intersect_culling_back_faces(r, hit) : compiled_->intersect(r, hit);
 }
 
+RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::material_at(const surface_hit& hit, hit_material& out) const {
+    // A user-written hittable reports its own material; built-in shapes index the table.
+    if (hit.user_shape) {
+        out.reported = compile_reported_material(hit.user_record);
+        out.reported_terms = whitted_terms::of(*out.reported);
+    }
+    const compiled_material& stored = hit.user_shape ? *out.reported : compiled_->materials[hit.material];
+    // A textured lambertian or light: its colour at this hit.
+    if (stored.texture != no_texture) out.looked_up = textured(*compiled_, stored, hit);
+    out.m = out.looked_up ? &*out.looked_up : &stored;
+    out.terms = hit.user_shape ? &*out.reported_terms : &terms_[hit.material];
+}
+
 // What leaves the hit point towards the ray's origin, without the delta lobes: local shading,
 // and the lobes (mirror, conductor, glass) to follow while bounces remain.
 RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::open(const surface_hit& hit, const ray3f& r, int depth, pcg32& rng,
                                                       uint64_t& rays, frame& f, const whitted_settings& w) const {
-    // A user-written hittable reports its own material; built-in shapes index the table.
-    std::optional<compiled_material> reported;
-    std::optional<whitted_terms> reported_terms;
-    if (hit.user_shape) {
-        reported = compile_reported_material(hit.user_record);
-        reported_terms = whitted_terms::of(*reported);
-    }
-    const compiled_material& stored = hit.user_shape ? *reported : compiled_->materials[hit.material];
-    // A textured lambertian or light: its colour at this hit.
-    std::optional<compiled_material> looked_up;
-    if (stored.texture != no_texture) looked_up = textured(*compiled_, stored, hit);
-    const compiled_material& m = looked_up ? *looked_up : stored;
-    const whitted_terms& terms = hit.user_shape ? *reported_terms : terms_[hit.material];
+    hit_material at;
+    material_at(hit, at);
+    const compiled_material& m = *at.m;
+    const whitted_terms& terms = *at.terms;
     // The course's rule for glass seen from inside (whitted_settings::shade_inside_dielectrics):
     // no ambient, diffuse or specular term there, and so no shadow rays.
     const bool from_inside_glass = m.refracts() && !hit.front_face;
@@ -564,6 +598,97 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace(const ray3f& r, pcg32& r
     }
 }
 
+// The course's path tracer (homework 6; docs/course.md, "Path tracing"): one path per sample, one
+// indirect ray per hit. At each hit: a light object's radiance when the ray may see it (a camera
+// ray, a ray from a delta lobe, any ray without next-event estimation); with next-event estimation,
+// shade() without its ambient term (every light, each through a shadow ray; a ray that then hits a
+// light object adds nothing, as that light was sampled); then the indirect ray: through the
+// material's delta lobe when it has one (reflection or transmission chosen by Fresnel, tilted by
+// its Roughness), else over the hemisphere about the shading normal, uniform (pdf 1 / (2 pi)) or,
+// with importance sampling, by the cosine (pdf cos / pi), weighted by the course's f cos / pdf.
+// Russian roulette continues with probability q = min(1, the throughput's largest channel) and
+// divides by q, with no depth limit; without it the path stops after MaxRecursionDepth bounces.
+// A path is at most whitted.max_branch_rays rays long (2^14 by default) either way.
+RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace_path(const ray3f& camera_ray, pcg32& rng, uint64_t& rays,
+                                                             const view_camera::path_tracing_t& pt,
+                                                             const whitted_settings& w) const {
+    vec3f L{0, 0, 0}, beta{1, 1, 1};
+    ray3f r = camera_ray;
+    bool sees_lights = true;    // whether a light object this ray hits adds its radiance
+    bool absorbing = false;     // the ray travels inside absorbing glass (`medium`)
+    compiled_material medium;
+    for (uint32_t depth = 0;; ++depth) {
+        ++rays;
+        surface_hit hit;
+        if (!intersect(r, hit, w)) {
+            if (depth == 0) L += background_; // the background is seen by camera rays only
+            break;
+        }
+        if (absorbing) beta *= medium.transmittance(hit.t);
+        hit_material at;
+        material_at(hit, at);
+        const compiled_material& m = *at.m;
+        const whitted_terms& terms = *at.terms;
+        if (sees_lights) L += beta * terms.emission;
+        // Glass seen from inside has no local shading (the classic renderer's rule).
+        const bool shaded = !(m.refracts() && !hit.front_face) || w.shade_inside_dielectrics;
+        if (pt.next_event_estimation && shaded) L += beta * shade(hit, r, m, terms, rng, rays, false);
+        if (!pt.russian_roulette && depth >= uint32_t(max_recursion_depth_)) break;
+        if (depth + 1 >= w.max_branch_rays) break;
+
+        const vec3f wo = -r.dir;
+        const vec3f n = dot(wo, hit.shading_normal) > 0 ? hit.shading_normal : hit.normal;
+        const shading_point sp{n, hit.front_face};
+        vec3f wi, weight;
+        bool delta = false, transmitted = false;
+        if (m.has_delta_lobe()) {
+            material_sample s;
+            if (!m.sample(wo, sp, rng, s, lobe(delta_reflection | delta_transmission)) || !s.is_delta()) break;
+            delta = true;
+            transmitted = s.sampled == delta_transmission;
+            wi = s.wi;
+            weight = s.value;
+            if (terms.roughness > 0) {
+                vec3 u, v;
+                course_frame(vec3(wi.x, wi.y, wi.z), u, v);
+                const float xi1 = rng.next_float() - 0.5f, xi2 = rng.next_float() - 0.5f;
+                wi = normalize(wi + terms.roughness * (xi1 * vec3f(u) + xi2 * vec3f(v)));
+            }
+        } else {
+            const float u1 = rng.next_float(), u2 = rng.next_float();
+            float pdf;
+            if (pt.importance_sampling) {
+                wi = sample_cosine_direction(n, u1, u2);
+                pdf = fmax_inline(dot(wi, n), 0.0f) * (1.0f / pi_f);
+            } else {
+                // Uniform over the hemisphere: cos theta uniform in [0, 1).
+                const float z = u1, radius = std::sqrt(fmax_inline(0.0f, 1.0f - z * z));
+                vec3f e1, e2;
+                frame_across(n, e1, e2);
+                const vec3f c = unit_circle(u2);
+                wi = normalize((radius * c.x) * e1 + (radius * c.y) * e2 + z * n);
+                pdf = 1.0f / (2.0f * pi_f);
+            }
+            if (!(pdf > 0) || !(dot(wi, n) > 0)) break;
+            weight = course_f_cos(m, terms, wo, wi, sp) * (1.0f / pdf);
+        }
+        beta *= weight;
+        if (pt.russian_roulette) {
+            const float q = fmin_inline(1.0f, max_component(beta));
+            if (!(rng.next_float() < q)) break;
+            beta *= 1.0f / q;
+        }
+        if (!(max_component(beta) > 0)) break;
+        sees_lights = delta || !pt.next_event_estimation || !shaded;
+        r = spawn(hit, transmitted ? -hit.normal : hit.normal, wi);
+        // Inside glass when it enters through the front or stays in at the back.
+        const bool inside = hit.front_face == transmitted;
+        absorbing = delta && inside && m.absorbs_inside();
+        if (absorbing) medium = m;
+    }
+    return L;
+}
+
 RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_index,
                                                                   const render_settings& given) const {
     auto start = std::chrono::steady_clock::now();
@@ -637,7 +762,7 @@ RTWEEKEND_ENGINE_FUNCTION whitted_render whitted_renderer::render(size_t camera_
             r.tmin = 0;
             r.tmax = std::numeric_limits<float>::infinity();
             r.time = time;
-            return trace(r, rng, rays, ws);
+            return c.path_tracing.on ? trace_path(r, rng, rays, c.path_tracing, ws) : trace(r, rng, rays, ws);
         },
         start);
     return {std::move(out.img), out.stats, std::move(out.sums)};

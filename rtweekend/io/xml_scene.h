@@ -20,7 +20,10 @@
 //     AmbientReflectance, DiffuseReflectance, SpecularReflectance, PhongExponent,
 //     MirrorReflectance, RefractionIndex (required by conductor and dielectric), AbsorptionIndex,
 //     AbsorptionCoefficient; each optional, defaulting as whitted_material does. One shared
-//     whitted_material per material;
+//     whitted_material per material; BRDF="k" names an entry of <BRDFs>;
+//   <BRDFs>: <OriginalPhong>, <ModifiedPhong normalized>, <OriginalBlinnPhong>,
+//     <ModifiedBlinnPhong normalized>, <TorranceSparrow kdfresnel>, each with an id (one numbering
+//     for all) and <Exponent> (course_brdf_bsdf.h; it replaces the material's PhongExponent);
 //   <VertexData>: x y z triples;
 //   <Transformations>: <Translation id> dx dy dz, <Scaling id> sx sy sz, <Rotation id> degrees
 //     x y z (counter-clockwise about the axis through the origin), <Composite id> 16 numbers of a
@@ -55,10 +58,11 @@
 // that hit it and sampled as a light (course_lights.h: light_mesh, light_sphere).
 // <MotionBlur>x y z</MotionBlur> on a Mesh, Sphere or MeshInstance moves it by t (x, y, z) at the
 // ray's time t, after its transformations (transform.h: moving); cameras with NumSamples give each
-// sample its own time.
+// sample its own time. <BRDFs> and a material's BRDF="k" (homework 6, above); a camera's
+// <Renderer>PathTracing</Renderer> and <RendererParams> (view_camera::path_tracing; the course's
+// path tracer of course/whitted.h).
 //
-// Not read yet (later homeworks): textures and <TexCoordData>, environment lights,
-// BRDFs and renderers. Each such element, and any other the lists
+// Not read yet (later homeworks): textures and <TexCoordData>, environment lights. Each such element, and any other the lists
 // above do not name, and any attribute they do not name, is one warning
 // (whitted_scene::warnings: "scene.xml:12: <TexCoordData> is not supported yet and is ignored"; at
 // most 20, then a count of the rest); the scene renders without it. <VertexData binaryFile="f">
@@ -227,6 +231,7 @@ class xml_scene_reader {
         scene.files.push_back(path_);
         read_settings(root, scene);
         read_vertices(root);
+        read_brdfs(root);
         read_materials(root);
         read_transformations(root);
         read_cameras(root, scene);
@@ -234,6 +239,7 @@ class xml_scene_reader {
         read_objects(root, scene);
         scene.files.insert(scene.files.end(), ply_files_.begin(), ply_files_.end());
         if (scene.cameras.empty()) fail(root, "<Scene>", "no camera: a scene needs a <Camera> inside <Cameras>");
+        scene.warnings = notes_;
         warn_unread(root, scene.warnings);
         return scene;
     }
@@ -534,6 +540,46 @@ class xml_scene_reader {
         return bytes;
     }
 
+    // A true|false attribute (absent: false).
+    bool flag(node el, const char* name, const std::string& owner) const {
+        pugi::xml_attribute a = attr(el, name);
+        if (!a) return false;
+        const std::string v = lower(trim(a.value()));
+        if (v == "true" || v == "1") return true;
+        if (v != "false" && v != "0")
+            fail(el, owner, std::string(name) + "=\"" + token_text(a.value()) + "\" must be true or false");
+        return false;
+    }
+
+    // <BRDFs> (homework 6): the models materials name with BRDF="k".
+    void read_brdfs(node root) {
+        using model = course_brdf_bsdf::model_t;
+        for (node section : root.children("BRDFs")) {
+            mark(section);
+            for (node b : section.children()) {
+                if (b.type() != pugi::node_element) continue;
+                const std::string name = b.name();
+                course_brdf_bsdf brdf;
+                if (name == "OriginalPhong") brdf.model = model::original_phong;
+                else if (name == "ModifiedPhong") brdf.model = model::modified_phong;
+                else if (name == "OriginalBlinnPhong") brdf.model = model::original_blinn_phong;
+                else if (name == "ModifiedBlinnPhong") brdf.model = model::modified_blinn_phong;
+                else if (name == "TorranceSparrow") brdf.model = model::torrance_sparrow;
+                else continue; // warned about as unread
+                mark(b);
+                const std::string owner = element_name(b);
+                if (!attr(b, "id")) fail(b, owner, "missing attribute id");
+                const long long id = attribute_integer(b, "id", 0);
+                if (brdfs_.count(id)) fail(b, owner, "BRDF id " + std::to_string(id) + " is defined twice");
+                if (brdf.model == model::modified_phong || brdf.model == model::modified_blinn_phong)
+                    brdf.normalized = flag(b, "normalized", owner);
+                if (brdf.model == model::torrance_sparrow) brdf.kd_fresnel = flag(b, "kdfresnel", owner);
+                brdf.exponent = float(bounded(child(b, "Exponent", true), owner, 0, false));
+                brdfs_[id] = brdf;
+            }
+        }
+    }
+
     void read_materials(node root) {
         for (node section : root.children("Materials")) {
             mark(section);
@@ -566,9 +612,46 @@ class xml_scene_reader {
                 if (node n = child(m, "AbsorptionIndex", false)) p.absorption_index = bounded(n, owner, 0, false);
                 if (node n = child(m, "AbsorptionCoefficient", false)) p.absorption_coefficient = colour(n, owner);
                 if (node n = child(m, "Roughness", false)) p.roughness = bounded(n, owner, 0, false);
+                if (attr(m, "BRDF")) {
+                    const long long b = attribute_integer(m, "BRDF", 0);
+                    auto it = brdfs_.find(b);
+                    if (it == brdfs_.end())
+                        fail(m, owner, "BRDF=\"" + std::to_string(b) + "\" names no entry of <BRDFs>");
+                    p.brdf = it->second;
+                    p.phong_exponent = it->second.exponent;
+                }
                 materials_[id] = material;
                 material_lines_[id] = line_of(m);
             }
+        }
+    }
+
+    // <Renderer>PathTracing</Renderer> and <RendererParams> (homework 6): any of the words
+    // NextEventEstimation, ImportanceSampling, RussianRoulette (none: uniform sampling, no NEE, the
+    // depth limit).
+    void read_renderer(node c, const std::string& owner, view_camera& cam) {
+        node renderer = child(c, "Renderer", false);
+        if (renderer) {
+            const std::string name = trim(text(renderer, owner));
+            if (lower(name) != "pathtracing")
+                fail(renderer, owner, "<Renderer> '" + token_text(name) + "' is not supported (PathTracing is; without a <Renderer>, the classic ray tracer)");
+            cam.path_tracing.on = true;
+        }
+        node params = child(c, "RendererParams", false);
+        if (!params) return;
+        for (const std::string& w : words(text(params, owner))) {
+            const std::string word = lower(w);
+            if (word == "nexteventestimation") cam.path_tracing.next_event_estimation = true;
+            else if (word == "importancesampling") cam.path_tracing.importance_sampling = true;
+            else if (word == "russianroulette") cam.path_tracing.russian_roulette = true;
+            else
+                fail(params, owner, "<RendererParams>: '" + token_text(w) +
+                                        "' is not one of NextEventEstimation, ImportanceSampling, RussianRoulette");
+        }
+        if (!renderer) {
+            const size_t line = line_of(params);
+            notes_.push_back(one_line(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner +
+                                      ": <RendererParams> without <Renderer>PathTracing</Renderer> is ignored (the classic ray tracer takes none)"));
         }
     }
 
@@ -778,6 +861,7 @@ class xml_scene_reader {
                 if (cam.aperture > 0 && cam.focus_distance == 0)
                     fail(c, owner, "an <ApertureSize> needs a <FocusDistance>");
                 if (node t = child(c, "Tonemap", false)) read_tonemap(t, owner, cam);
+                read_renderer(c, owner, cam);
                 if (pugi::xml_attribute hand = attr(c, "handedness")) {
                     const std::string h = lower(trim(hand.value()));
                     if (h == "left") cam.left_handed = true;
@@ -1152,6 +1236,8 @@ class xml_scene_reader {
     bool zero_based_ = false;
     std::vector<point3> vertices_;
     std::map<long long, std::shared_ptr<whitted_material>> materials_;
+    std::map<long long, course_brdf_bsdf> brdfs_;
+    std::vector<std::string> notes_; // warnings besides the unread elements
     std::map<long long, size_t> material_lines_;
     std::map<char, std::map<long long, affine_map>> transformations_; // by letter t, s, r, c, then id
     std::map<long long, node> meshes_by_id_, instances_by_id_;

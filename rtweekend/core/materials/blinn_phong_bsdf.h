@@ -43,13 +43,8 @@ struct blinn_phong_bsdf {
         const float u0 = u.next_float();
         const auto [u1, u2] = draw_2d(u);
         if (u0 < ps) {
-            // cos theta_h = u^(1 / (n + 1)) has density (n + 1) cos^n theta_h sin theta_h d theta.
-            const float cos_h = std::pow(u1, 1.0f / (exponent + 1.0f));
-            const float sin_h = std::sqrt(fmax_inline(0.0f, 1.0f - cos_h * cos_h));
-            vec3f e1, e2;
-            frame_across(n, e1, e2);
-            const vec3f c = unit_circle(u2);
-            const vec3f h = (sin_h * c.x) * e1 + (sin_h * c.y) * e2 + cos_h * n;
+            // The half vector with density (n + 1) / (2 pi) cos^n theta_h, wo reflected about it.
+            const vec3f h = sample_cosine_power(n, exponent, u1, u2);
             s.wi = normalize(2.0f * dot(wo, h) * h - wo);
         } else {
             s.wi = sample_cosine_direction(n, u1, u2);

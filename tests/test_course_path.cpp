@@ -1,0 +1,198 @@
+// The course's path tracer (homework 6; rtweekend/course/whitted.h, trace_path; shared/formats/
+// ceng795-later.md section 11) against closed forms: a diffusely reflecting box of light meshes
+// (the furnace: L_e (1 + a + a^2 + ...) summed to the depth limit, or to infinity under Russian
+// roulette), a floor under a square light (kd L_e times the view factor of the square), and point
+// lights, which count only through next-event estimation. Each expectation holds for every
+// combination of the renderer's parameters it names; the tolerance is five standard errors
+// estimated from the spread of 16 pixels that share one expectation.
+
+#include <rtweekend/course/whitted.h>
+#include <rtweekend/io/xml_scene.h>
+
+#include <doctest/doctest.h>
+
+#include "test_helpers.h"
+
+#include <cmath>
+#include <string>
+
+namespace test_course_path {
+
+using namespace rt;
+
+namespace {
+
+constexpr double pi_d = 3.14159265358979323846;
+
+// The mean of a 4x4 image's red channel and its standard error (from the pixels' spread).
+struct pixel_mean {
+    double mean = 0, error = 0;
+};
+pixel_mean mean_of(const image& img) {
+    double s = 0, s2 = 0;
+    const int n = img.width() * img.height();
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) {
+            const double v = img.pixel(x, y).x();
+            s += v;
+            s2 += v * v;
+        }
+    const double mean = s / n, var = std::fmax(0.0, (s2 - n * mean * mean) / (n - 1));
+    return {mean, std::sqrt(var / n)};
+}
+
+std::string camera(const std::string& position, const std::string& gaze, int samples, const std::string& renderer) {
+    return "<Cameras><Camera id=\"1\"><Position>" + position + "</Position><Gaze>" + gaze +
+           "</Gaze><Up>0 0 1</Up><NearPlane>-0.0001 0.0001 -0.0001 0.0001</NearPlane><NearDistance>1</NearDistance>"
+           "<ImageResolution>4 4</ImageResolution><ImageName>x.exr</ImageName><NumSamples>" +
+           std::to_string(samples) + "</NumSamples>" + renderer + "</Camera></Cameras>";
+}
+
+std::string renderer(bool nee, bool importance, bool roulette) {
+    std::string params;
+    if (nee) params += " NextEventEstimation";
+    if (importance) params += " ImportanceSampling";
+    if (roulette) params += " RussianRoulette";
+    return "<Renderer>PathTracing</Renderer><RendererParams>" + params + "</RendererParams>";
+}
+
+// A diffuse material in course units: normalised modified Phong with ks = 0 is f = kd / pi, an
+// albedo of kd.
+std::string diffuse_material(int id, double kd) {
+    const std::string k = std::to_string(kd);
+    return "<Material id=\"" + std::to_string(id) + "\" BRDF=\"1\"><DiffuseReflectance>" + k + " " + k + " " + k +
+           "</DiffuseReflectance><SpecularReflectance>0 0 0</SpecularReflectance></Material>";
+}
+const char* diffuse_brdf = "<BRDFs><ModifiedPhong id=\"1\" normalized=\"true\"><Exponent>1</Exponent></ModifiedPhong></BRDFs>";
+
+image render_text(const std::string& xml) {
+    test::scratch_dir dir("course_path");
+    const whitted_scene scene = load_xml_scene(dir.write("scene.xml", xml));
+    INFO((scene.warnings.empty() ? std::string() : scene.warnings[0]));
+    REQUIRE(scene.warnings.empty());
+    return render_whitted(scene, 0).img;
+}
+
+// The view factor from a point to a w x h rectangle in a parallel plane at distance c, the point
+// below one corner (Howell's catalogue of configuration factors, B-3; the form given by Hamilton
+// and Morgan 1952): F = 1/(2 pi) [A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2) atan(A/sqrt(1+B^2))].
+double corner_view_factor(double w, double h, double c) {
+    const double A = w / c, B = h / c;
+    const double a = std::sqrt(1 + A * A), b = std::sqrt(1 + B * B);
+    return (A / a * std::atan(B / a) + B / b * std::atan(A / b)) / (2 * pi_d);
+}
+
+} // namespace
+
+TEST_CASE("course path tracer: a box of light meshes of albedo a sums L_e a^k to the depth, or all of it with roulette") {
+    // A closed cube of two-sided light meshes of radiance 100 and albedo 0.5, the camera inside.
+    const double Le = 100, a = 0.5;
+    std::string faces;
+    const int quads[6][4] = {{1, 2, 3, 4}, {5, 6, 7, 8}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8}};
+    for (const auto& q : quads)
+        faces += std::to_string(q[0]) + " " + std::to_string(q[1]) + " " + std::to_string(q[2]) + " " +
+                 std::to_string(q[0]) + " " + std::to_string(q[2]) + " " + std::to_string(q[3]) + " ";
+    auto scene = [&](int depth, const std::string& r) {
+        return "<Scene><MaxRecursionDepth>" + std::to_string(depth) + "</MaxRecursionDepth>" +
+               camera("0.1 0.2 0.05", "0.3 -0.2 -1", 1024, r) + diffuse_brdf + "<Materials>" + diffuse_material(1, a) +
+               "</Materials><VertexData>-1 -1 -1 1 -1 -1 1 1 -1 -1 1 -1 -1 -1 1 1 -1 1 1 1 1 -1 1 1</VertexData>"
+               "<Objects><LightMesh id=\"1\"><Material>1</Material><Faces>" + faces +
+               "</Faces><Radiance>100 100 100</Radiance></LightMesh></Objects></Scene>";
+    };
+    for (bool nee : {false, true})
+        for (bool importance : {false, true}) {
+            CAPTURE(nee);
+            CAPTURE(importance);
+            // Depth 2 without roulette: the camera sees L_e, then two bounces; with next-event
+            // estimation the point at depth 2 is lit directly too (a^3).
+            const double capped = nee ? Le * (1 + a + a * a + a * a * a) : Le * (1 + a + a * a);
+            const pixel_mean m2 = mean_of(render_text(scene(2, renderer(nee, importance, false))));
+            INFO("depth 2: " << m2.mean << " +- " << m2.error << ", expected " << capped);
+            CHECK(std::fabs(m2.mean - capped) <= 5 * m2.error + 1e-3 * capped);
+            // Russian roulette lifts the limit: L_e / (1 - a), whatever MaxRecursionDepth says.
+            const pixel_mean mr = mean_of(render_text(scene(1, renderer(nee, importance, true))));
+            INFO("roulette: " << mr.mean << " +- " << mr.error << ", expected " << Le / (1 - a));
+            CHECK(std::fabs(mr.mean - Le / (1 - a)) <= 5 * mr.error + 1e-3 * Le);
+            CHECK(mr.error < 0.02 * Le); // the bound is not vacuous
+        }
+}
+
+TEST_CASE("course path tracer: a floor under a square light is kd L_e times the square's view factor") {
+    // The floor z = 0 (albedo 0.8), a black light mesh of radiance 100, 2 x 2 at height 1 centred
+    // over the origin, seen from the side: the floor point at the origin receives L_e times the
+    // view factor F of the square, four corner rectangles of 1 x 1 at distance 1, and reflects
+    // kd L_e F.
+    const double F = 4 * corner_view_factor(1, 1, 1);
+    CHECK(F == doctest::Approx(0.5541).epsilon(1e-3)); // the tabulated value for a = b = c
+    const double expected = 0.8 * 100 * F;
+    for (bool nee : {false, true})
+        for (bool importance : {false, true}) {
+            CAPTURE(nee);
+            CAPTURE(importance);
+            const std::string xml =
+                "<Scene><MaxRecursionDepth>1</MaxRecursionDepth>" + camera("3 0 0.5", "-3 0 -0.5", 4096, renderer(nee, importance, false)) +
+                diffuse_brdf + "<Materials>" + diffuse_material(1, 0.8) + diffuse_material(2, 0) +
+                "</Materials><VertexData>-50 -50 0 50 -50 0 50 50 0 -50 50 0 -1 -1 1 1 -1 1 1 1 1 -1 1 1</VertexData>"
+                "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3 1 3 4</Faces></Mesh>"
+                "<LightMesh id=\"2\"><Material>2</Material><Faces>5 7 6 5 8 7</Faces>"
+                "<Radiance>100 100 100</Radiance></LightMesh></Objects></Scene>";
+            const pixel_mean m = mean_of(render_text(xml));
+            INFO(m.mean << " +- " << m.error << ", expected " << expected);
+            CHECK(std::fabs(m.mean - expected) <= 5 * m.error + 2e-3 * expected);
+            CHECK(m.error < 0.02 * expected);
+        }
+}
+
+TEST_CASE("course path tracer: a point light counts through next-event estimation only, and the camera's misses see the background") {
+    // A plain (level-1) floor of kd 0.6 lit by a point light of intensity 400 at height 2 above
+    // the point the camera sees: I / d^2 kd cos = 100 x 0.6 = 60 with next-event estimation, 0
+    // without (it is never hit); a camera turned away sees the background.
+    auto scene = [](bool nee, const std::string& gaze) {
+        return "<Scene><MaxRecursionDepth>3</MaxRecursionDepth><BackgroundColor>7 8 9</BackgroundColor>" +
+               camera("3 0 1", gaze, 16, renderer(nee, false, false)) +
+               "<Lights><PointLight id=\"1\"><Position>0 0 2</Position><Intensity>400 400 400</Intensity></PointLight></Lights>"
+               "<Materials><Material id=\"1\"><DiffuseReflectance>0.6 0.6 0.6</DiffuseReflectance></Material></Materials>"
+               "<VertexData>-50 -50 0 50 -50 0 50 50 0 -50 50 0</VertexData>"
+               "<Objects><Mesh id=\"1\"><Material>1</Material><Faces>1 2 3 1 3 4</Faces></Mesh></Objects></Scene>";
+    };
+    const image lit = render_text(scene(true, "-3 0 -1"));
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) CHECK(lit.pixel(x, y).x() == doctest::Approx(60).epsilon(2e-3));
+    const image dark = render_text(scene(false, "-3 0 -1"));
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) CHECK(dark.pixel(x, y).x() == 0.0f);
+    const image sky = render_text(scene(true, "0 1 1"));
+    CHECK(sky.pixel(1, 2).z() == 9.0f);
+}
+
+TEST_CASE("course path tracer: the reader's <Renderer> and <RendererParams>") {
+    test::scratch_dir dir("course_path_reader");
+    auto load = [&](const std::string& r) {
+        return load_xml_scene(dir.write("s.xml", "<Scene>" + camera("0 0 5", "0 -1 -1", 1, r) +
+                                                     "<VertexData>0 0 0</VertexData><Materials><Material id=\"1\"/></Materials>"
+                                                     "<Objects><Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius></Sphere></Objects></Scene>"));
+    };
+    const whitted_scene s = load("<Renderer>PathTracing</Renderer><RendererParams>RussianRoulette NextEventEstimation</RendererParams>");
+    CHECK(s.cameras[0].path_tracing.on);
+    CHECK(s.cameras[0].path_tracing.next_event_estimation);
+    CHECK(s.cameras[0].path_tracing.russian_roulette);
+    CHECK_FALSE(s.cameras[0].path_tracing.importance_sampling);
+    CHECK_FALSE(load("").cameras[0].path_tracing.on);
+    const whitted_scene params_alone = load("<RendererParams>ImportanceSampling</RendererParams>");
+    CHECK_FALSE(params_alone.cameras[0].path_tracing.on);
+    REQUIRE(params_alone.warnings.size() == 1);
+    CHECK(params_alone.warnings[0].find("without <Renderer>PathTracing") != std::string::npos);
+    auto error_of = [&](const std::string& r) -> std::string {
+        try {
+            load(r);
+        } catch (const scene_error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    CHECK(error_of("<Renderer>Photon</Renderer>").find("<Renderer> 'Photon' is not supported") != std::string::npos);
+    CHECK(error_of("<Renderer>PathTracing</Renderer><RendererParams>NEE</RendererParams>").find("'NEE' is not one of") !=
+          std::string::npos);
+}
+
+} // namespace test_course_path
