@@ -1,4 +1,4 @@
-// tonemap: a linear image (EXR or PFM) to an 8-bit PNG (or PPM, BMP) through the photographic
+// tonemap: a linear image (EXR, PFM or Radiance HDR) to an 8-bit PNG (or PPM, BMP) through the photographic
 // tone reproduction operator (Reinhard et al. 2002) exactly as CENG795's homework 5 uses it
 // (rtweekend/image/tonemap.h has the formulas):
 //
@@ -27,7 +27,7 @@ void print_usage(std::FILE* to) {
     std::fprintf(to,
                  "usage: tonemap IN OUT [--key K] [--burn B] [--saturation S] [--gamma G] [--help]\n"
                  "%s\n"
-                 "  IN              a linear image: EXR or PFM\n"
+                 "  IN              a linear image: EXR, PFM or Radiance HDR\n"
                  "  OUT             .png, .ppm or .bmp, written atomically\n"
                  "  --key K         the grey the log-average luminance maps to (default 0.18)\n"
                  "  --burn B        percent of the pixels burnt out to white, in [0, 100) (default 0)\n"
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
         const rt::loaded_image in = rt::read_image(args.files[0]);
         if (in.display_encoded)
             throw rt::scene_error("'" + args.files[0] + "' is an 8-bit " + in.format +
-                                  " image: tone mapping needs linear radiance (EXR or PFM)");
+                                  " image: tone mapping needs linear radiance (EXR, PFM or Radiance HDR)");
         const std::vector<unsigned char> bytes = rt::tonemap_photographic(in.pixels, args.tonemap);
         rt::write_file_atomically(args.files[1], rt::encode_8bit_image(args.files[1], in.pixels.width(),
                                                                         in.pixels.height(), bytes));

@@ -323,9 +323,9 @@ inline std::string jpeg_header_problem(const std::string& b, size_t* scans = nul
 // truncated file hung it. The header is lines up to an empty one, then the resolution line; a
 // scanline is "2 2", its width in 2 bytes, then each of the 4 components as runs (a count above
 // 128, then one byte) and literals (a count, then that many bytes). Widths below 8 or above 32767,
-// and a scanline that does not start "2 2", are stored flat, which stb_image reads to the end.
+// and a scanline that does not start "2 2", are stored flat, which stb_image reads to the end: a
+// file too short for its flat pixels is refused too.
 inline std::string hdr_rle_problem(const std::string& b, uint64_t w, uint64_t h) {
-    if (w < 8 || w > 32767) return {};
     auto byte = [&](size_t i) -> unsigned { return i < b.size() ? static_cast<unsigned char>(b[i]) : 0u; };
     // The header's lines, read as stb_image reads them (stbi__hdr_gettoken): a byte, then, while the
     // file has more and that byte is not '\n', it is kept and the next read; at 1023 kept the rest
@@ -351,8 +351,18 @@ inline std::string hdr_rle_problem(const std::string& b, uint64_t w, uint64_t h)
     while (next_line() != 0) {
     }
     next_line(); // the resolution line, which stbi_info read as w x h
+    // Flat pixels (4 bytes each) from `row` on: stb_image would read past the end as zeros, a
+    // silently black part of the image, so a file too short for them is refused.
+    auto flat_from = [&](uint64_t row) -> std::string {
+        const uint64_t need = (h - row) * w * 4, have = b.size() > pos ? b.size() - pos : 0;
+        if (have >= need) return {};
+        return "HDR file is truncated: rows " + std::to_string(row) + " to " + std::to_string(h - 1) + " of " +
+               std::to_string(w) + " flat pixels need " + std::to_string(need) + " bytes after byte " +
+               std::to_string(pos) + ", the file has " + std::to_string(have);
+    };
+    if (w < 8 || w > 32767) return flat_from(0);
     for (uint64_t row = 0; row < h; ++row) {
-        if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) return {}; // flat from here on
+        if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) return flat_from(row); // flat from here on
         if ((uint64_t(byte(pos + 2)) << 8 | byte(pos + 3)) != w) return {};          // stb_image refuses it
         pos += 4;
         for (int component = 0; component < 4; ++component) {

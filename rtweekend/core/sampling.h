@@ -80,6 +80,16 @@ RTWEEKEND_FORCE_INLINE vec3f sample_cosine_direction(const vec3f& n, float u1, f
     return (r * circle.x) * e1 + (r * circle.y) * e2 + height * n;
 }
 
+// A direction uniform on the hemisphere about the unit normal n (density 1 / (2 pi)): cos theta
+// = u1, the azimuth from u2.
+RTWEEKEND_FORCE_INLINE vec3f sample_uniform_hemisphere(const vec3f& n, float u1, float u2) {
+    const float radius = sqrt_f(fmax_inline(0.0f, 1.0f - u1 * u1));
+    vec3f e1, e2;
+    frame_across(n, e1, e2);
+    const vec3f circle = unit_circle(u2);
+    return normalize((radius * circle.x) * e1 + (radius * circle.y) * e2 + u1 * n);
+}
+
 // A direction about the unit axis a with the density of a Phong lobe, (p + 1) / (2 pi) cos^p of
 // the angle to a over the sphere: cos = u1^(1 / (p + 1)), the azimuth from u2. Unit up to rounding
 // (not renormalised). The Blinn-Phong half vector and the course's Phong lobe draw from it.

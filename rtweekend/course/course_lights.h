@@ -25,13 +25,22 @@
 //                      area density is 1 / (4 pi r^2 J), J = |det M| |M^-T n| the map's stretch
 //                      of area there: E = L max(0, n_y . w_i) 4 pi r^2 J / |y - x|^2 (the far
 //                      side is hidden by the sphere itself)
+//   environment_light  <SphericalDirectionalLight> (homework 5): radiance from every direction at
+//                      infinity, a lat-long image: one direction w uniform on the hemisphere about
+//                      n per shading, E = 2 pi L(w) when nothing is in the way (L over the density
+//                      1 / (2 pi)); rays that leave the scene see L of their direction
 
 #include "../color.h"
+#include "../core/vec3f.h"
+#include "../image/image.h"
 #include "../transform.h"
 #include "../vec3.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace rt {
@@ -91,11 +100,32 @@ struct light_sphere {
     color radiance;
 };
 
+// A lat-long map of the radiance arriving from each direction d (unit, world space): the texel at
+// u = (1 + atan2(d_x, -d_z) / pi) / 2 across and v = acos(d_y) / pi down (v = 0 the top row: +y),
+// the nearest one, (floor(u W), floor(v H)) clamped to the image (section 6.4 of the spec). Texels
+// are radiance as they are (an EXR's or HDR's floats; an 8-bit image's codes 0-255).
+struct environment_light {
+    std::shared_ptr<const image> map;
+    std::string path; // the file it was read from, for messages
+
+    vec3f radiance(const vec3f& d) const {
+        const double pi = 3.14159265358979323846;
+        const double u = (1 + std::atan2(double(d.x), -double(d.z)) / pi) / 2;
+        const double v = std::acos(std::clamp(double(d.y), -1.0, 1.0)) / pi;
+        const int w = map->width(), h = map->height();
+        // fmin and fmax before the conversion: a NaN direction gives the last texel, not undefined behaviour.
+        const int x = int(std::fmax(0.0, std::fmin(w - 1.0, std::floor(u * w))));
+        const int y = int(std::fmax(0.0, std::fmin(h - 1.0, std::floor(v * h))));
+        return vec3f(map->pixel(x, y));
+    }
+};
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::area_light;
 using rt::directional_light;
+using rt::environment_light;
 using rt::light_mesh;
 using rt::light_sphere;
 using rt::spot_light;

@@ -203,6 +203,14 @@ class whitted_renderer {
         mat3 linear, normal_map; // M and M^-T
     };
     std::vector<sphere_light_f> sphere_lights_;
+    std::vector<environment_light> environments_; // course_lights.h
+    // What a ray that leaves the scene in direction d sees of the environment lights: their sum
+    // (0 without any).
+    vec3f sky(const vec3f& d) const {
+        vec3f L{0, 0, 0};
+        for (const environment_light& e : environments_) L += e.radiance(d);
+        return L;
+    }
 };
 
 // Renders camera `camera_index` of the scene.
@@ -374,6 +382,11 @@ RTWEEKEND_ENGINE_FUNCTION whitted_renderer::whitted_renderer(const whitted_scene
         f.intensity = vec3f(l.radiance);
         lights_.push_back(f);
     }
+    for (const environment_light& e : scene.environment_lights) {
+        if (!e.map || e.map->width() <= 0 || e.map->height() <= 0)
+            throw scene_error("environment light has no image");
+        environments_.push_back(e);
+    }
     // Back faces the culled walk skips (whitted_settings::cull_back_faces asks for it per render).
     compiled->set_back_face_culling([&](uint32_t m) { return !compiled->materials[m].transmits(); });
     compiled_ = std::move(compiled);
@@ -407,7 +420,7 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, 
                                                         const compiled_material& m, const whitted_terms& terms,
                                                         pcg32& rng, uint64_t& rays, bool ambient) const {
     vec3f L = ambient ? terms.ambient * ambient_light_ : vec3f{0, 0, 0};
-    if (lights_.empty()) return L;
+    if (lights_.empty() && environments_.empty()) return L;
     const vec3f n = hit.shading_normal, v = -r.dir;
     const shading_point sp{n, hit.front_face};
     const ray3f base = spawn(hit, hit.normal, r.dir); // origin on the side the ray came from
@@ -478,6 +491,16 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, 
         ++rays;
         if (compiled_->occluded(shadow)) continue;
         L += E * course_f_cos(m, terms, v, l, sp);
+    }
+    for (const environment_light& env : environments_) {
+        // One direction uniform on the hemisphere about n, E = L / (1 / (2 pi)).
+        const float u1 = rng.next_float(), u2 = rng.next_float();
+        const vec3f l = sample_uniform_hemisphere(n, u1, u2);
+        ray3f shadow = base;
+        shadow.dir = l;
+        ++rays;
+        if (compiled_->occluded(shadow)) continue;
+        L += (2 * pi_f) * env.radiance(l) * course_f_cos(m, terms, v, l, sp);
     }
     return L;
 }
@@ -556,7 +579,7 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace(const ray3f& r, pcg32& r
                                                         const whitted_settings& w) const {
     ++rays;
     surface_hit hit;
-    if (!intersect(r, hit, w)) return background_;
+    if (!intersect(r, hit, w)) return environments_.empty() ? background_ : sky(r.dir);
     frame root;
     open(hit, r, 0, rng, rays, root, w);
     if (root.count == 0) return root.L;
@@ -579,7 +602,7 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace(const ray3f& r, pcg32& r
         --budget;
         ++rays;
         if (!intersect(b.ray, hit, w)) {
-            f.L += b.weight * vec3f{0, 0, 0}; // a secondary ray that leaves the scene brings no light
+            f.L += b.weight * sky(b.ray.dir); // a secondary ray that leaves the scene: the environment, if any
             continue;
         }
         frame next;
@@ -621,7 +644,13 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace_path(const ray3f& camera
         ++rays;
         surface_hit hit;
         if (!intersect(r, hit, w)) {
-            if (depth == 0) L += background_; // the background is seen by camera rays only
+            // The environment lights, when there are any, as a light object; else the background,
+            // seen by camera rays only.
+            if (!environments_.empty()) {
+                if (sees_lights) L += beta * sky(r.dir);
+            } else if (depth == 0) {
+                L += background_;
+            }
             break;
         }
         if (absorbing) beta *= medium.transmittance(hit.t);
@@ -661,12 +690,7 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::trace_path(const ray3f& camera
                 wi = sample_cosine_direction(n, u1, u2);
                 pdf = fmax_inline(dot(wi, n), 0.0f) * (1.0f / pi_f);
             } else {
-                // Uniform over the hemisphere: cos theta uniform in [0, 1).
-                const float z = u1, radius = std::sqrt(fmax_inline(0.0f, 1.0f - z * z));
-                vec3f e1, e2;
-                frame_across(n, e1, e2);
-                const vec3f c = unit_circle(u2);
-                wi = normalize((radius * c.x) * e1 + (radius * c.y) * e2 + z * n);
+                wi = sample_uniform_hemisphere(n, u1, u2);
                 pdf = 1.0f / (2.0f * pi_f);
             }
             if (!(pdf > 0) || !(dot(wi, n) > 0)) break;

@@ -38,6 +38,7 @@ struct whitted_scene {
     std::vector<area_light> area_lights;
     std::vector<light_mesh> light_meshes;   // also in `world`, with emitting materials
     std::vector<light_sphere> light_spheres;
+    std::vector<environment_light> environment_lights; // rays that miss see their sum (not the background)
     std::vector<view_camera> cameras;
     hittable_list world;                // spheres, triangles and meshes with whitted_material materials
     // The files the scene was read from (load_xml_scene): the XML file, then its PLY meshes. Empty

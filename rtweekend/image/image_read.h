@@ -4,13 +4,14 @@
 //   read_image(path)            PPM (P3 and P6, maxval 1..65535, '#' comments in the header),
 //                               PFM ('PF' colour and 'Pf' grey, either byte order), PNG and BMP
 //                               (through stb_image), OpenEXR (through the OpenEXR library, when
-//                               the build has it: exr.h). The format is recognised by the file's first
+//                               the build has it: exr.h), Radiance HDR (through stb_image). The format is recognised by the file's first
 //                               bytes, not by its name. Throws scene_error naming the path.
 //   decode_image(bytes, name)   the same, from bytes in memory; `name` goes in the messages.
 //
 // What comes back is what the file stores, and whether that is display-encoded:
-//   - PFM and EXR hold linear radiance: `pixels` are their values as float (EXR half and uint
-//     channels converted exactly), display_encoded = false.
+//   - PFM, EXR and HDR hold linear radiance: `pixels` are their values as float (EXR half and uint
+//     channels converted exactly, HDR's shared-exponent RGBE as stb_image expands it),
+//     display_encoded = false.
 //   - PPM, PNG and BMP hold display-encoded values (our writers apply gamma 2 and the book's
 //     8-bit quantisation): `pixels` are the stored codes on the 8-bit scale 0..255, as floats,
 //     display_encoded = true. A PPM with maxval M other than 255 is put on that scale as
@@ -320,6 +321,27 @@ inline loaded_image decode_bmp(const std::string& bytes, const std::string& name
     return decode_with_stb(bytes, name, "BMP");
 }
 
+// Radiance HDR (RGBE; Greg Ward's format, "#?RADIANCE" or "#?RGBE"): linear floats, as stb_image
+// decodes them, after the same checks of its header, size and run-length data as the 8-bit
+// formats (stb_input_problem: image_header.h walks the scanlines).
+inline loaded_image decode_hdr(const std::string& bytes, const std::string& name) {
+    if (bytes.size() > size_t(INT32_MAX)) read_error(name, "HDR file is too large");
+    std::string problem = stb_input_problem(bytes);
+    if (!problem.empty()) read_error(name, problem);
+    int w = 0, h = 0, channels_in_file = 0;
+    float* rgb = stbi_loadf_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &w, &h,
+                                        &channels_in_file, 3);
+    if (!rgb) {
+        const char* reason = stbi_failure_reason();
+        read_error(name, std::string("HDR ") + one_line(reason && *reason ? reason : "cannot be decoded"));
+    }
+    loaded_image out{image(w, h), false, "HDR"};
+    std::vector<float>& dst = out.pixels.data();
+    for (size_t i = 0; i < dst.size(); ++i) dst[i] = rgb[i];
+    stbi_image_free(rgb);
+    return out;
+}
+
 } // namespace detail
 
 inline loaded_image decode_image(const std::string& bytes, const std::string& name) {
@@ -330,7 +352,8 @@ inline loaded_image decode_image(const std::string& bytes, const std::string& na
     if (starts_with("\x89PNG\r\n\x1a\n", 8)) return detail::decode_png(bytes, name);
     if (starts_with("BM", 2)) return detail::decode_bmp(bytes, name);
     if (starts_with("\x76\x2f\x31\x01", 4)) return loaded_image{decode_exr(bytes, name), false, "EXR"};
-    detail::read_error(name, "not a PPM (P3/P6), PFM, EXR, PNG or BMP file");
+    if (starts_with("#?RADIANCE\n", 11) || starts_with("#?RGBE\n", 7)) return detail::decode_hdr(bytes, name);
+    detail::read_error(name, "not a PPM (P3/P6), PFM, EXR, PNG, BMP or Radiance HDR file");
 }
 
 inline loaded_image read_image(const std::string& path) {

@@ -146,6 +146,7 @@ RTWEEKEND_ENGINE_FUNCTION void set_smooth_normals(triangle_mesh& mesh);
 #include "course_json.h"
 #include "../core/input_limits.h"
 #include "ply.h"
+#include "../image/image_read.h"
 #include "../core/text_lines.h"
 #include <pugixml.hpp>
 #include <cstring>
@@ -235,6 +236,7 @@ class xml_scene_reader {
         read_materials(root);
         read_transformations(root);
         read_cameras(root, scene);
+        read_images(root);
         read_lights(root, scene);
         read_objects(root, scene);
         scene.files.insert(scene.files.end(), ply_files_.begin(), ply_files_.end());
@@ -924,7 +926,69 @@ class xml_scene_reader {
                 light.radiance = colour(child(l, "Radiance", true), owner);
                 scene.area_lights.push_back(light);
             }
+            for (node l : section.children("SphericalDirectionalLight")) {
+                mark(l);
+                const std::string owner = element_name(l);
+                if (pugi::xml_attribute type = attr(l, "type")) {
+                    const std::string t = lower(trim(type.value()));
+                    if (t != "latlong")
+                        fail(l, owner, "type=\"" + token_text(type.value()) + "\" is not supported (latlong is)");
+                }
+                node id = child(l, "ImageId", true);
+                environment_light light;
+                light.map = image_of(id, owner, light.path);
+                scene.environment_lights.push_back(light);
+            }
         }
+    }
+
+    // <Textures><Images><Image id="k">path</Image>...: the images, by id, as the file names them
+    // (relative to its folder). An environment light reads its image (image_of); the texture maps
+    // that use the others are not read yet (each is warned about).
+    void read_images(node root) {
+        for (node section : root.children("Textures")) {
+            mark(section);
+            for (node images : section.children("Images")) {
+                mark(images);
+                for (node i : images.children("Image")) {
+                    mark(i);
+                    const std::string owner = element_name(i);
+                    if (!attr(i, "id")) fail(i, owner, "missing attribute id");
+                    const long long id = attribute_integer(i, "id", 0);
+                    if (images_.count(id)) fail(i, owner, "image id " + std::to_string(id) + " is defined twice");
+                    images_[id] = i;
+                }
+            }
+        }
+    }
+
+    // The image `ref` (an <ImageId>) names, read once: linear values as the file holds them (an
+    // 8-bit file's codes 0-255). Refused: a missing id or file, or texels that are not finite and
+    // non-negative radiance.
+    std::shared_ptr<const image> image_of(node ref, const std::string& owner, std::string& path) {
+        const long long id = integer(ref, owner);
+        auto it = images_.find(id);
+        if (it == images_.end()) fail(ref, owner, tag(ref) + " " + std::to_string(id) + " names no <Image> of <Textures>");
+        const std::string file = trim(text(it->second, element_name(it->second)));
+        if (file.empty()) fail(it->second, element_name(it->second), "names no file");
+        const std::filesystem::path fp(file);
+        path = fp.is_absolute() ? fp.string() : (dir_ / fp).string();
+        auto cached = loaded_images_.find(id);
+        if (cached != loaded_images_.end()) return cached->second;
+        loaded_image loaded;
+        try {
+            loaded = read_image(path);
+        } catch (const scene_error& e) {
+            fail(ref, owner, tag(ref) + " " + std::to_string(id) + ": " + e.what());
+        }
+        for (float c : loaded.pixels.data())
+            if (!(c >= 0) || !std::isfinite(c))
+                fail(ref, owner, tag(ref) + " " + std::to_string(id) + ": " + token_text(file) +
+                                     " holds a texel that is negative or not a finite number");
+        ply_files_.push_back(path); // hashed with the scene's files
+        auto img = std::make_shared<const image>(std::move(loaded.pixels));
+        loaded_images_[id] = img;
+        return img;
     }
 
     std::shared_ptr<whitted_material> material_of(node object, const std::string& owner) const {
@@ -1238,6 +1302,8 @@ class xml_scene_reader {
     std::map<long long, std::shared_ptr<whitted_material>> materials_;
     std::map<long long, course_brdf_bsdf> brdfs_;
     std::vector<std::string> notes_; // warnings besides the unread elements
+    std::map<long long, node> images_; // <Image> by id
+    std::map<long long, std::shared_ptr<const image>> loaded_images_;
     std::map<long long, size_t> material_lines_;
     std::map<char, std::map<long long, affine_map>> transformations_; // by letter t, s, r, c, then id
     std::map<long long, node> meshes_by_id_, instances_by_id_;

@@ -155,6 +155,8 @@ void images() {
     put("texture", "jpeg.jpg", jpg);
     put("texture", "hdr.hdr", hdr);
     put("texture", "hdr_rle.hdr", hdr_rle);
+    put("image", "hdr.hdr", hdr); // the images read_image takes too (environment maps)
+    put("image", "hdr_rle.hdr", hdr_rle);
     put("texture", "pgm.pgm", std::string("P5 2 2 255\n", 11) + std::string("\x00\x40\x80\xff", 4));
     put("texture", "ppm.ppm", p6);
 
