@@ -170,3 +170,30 @@ TEST_CASE("course BRDFs: one line for a BRDF that is not there or malformed") {
 }
 
 } // namespace test_course_brdf
+
+namespace test_course_brdf {
+
+TEST_CASE("course materials: degamma=\"true\" reads each reflectance c as c^2.2") {
+    // A sphere of kd 0.5 seen and lit head on from 4 units away by a point light of intensity
+    // 1600: E = 100, the pixel 100 kd; with degamma 100 x 0.5^2.2 = 21.764.
+    test::scratch_dir dir("course_degamma");
+    for (bool degamma : {false, true}) {
+        CAPTURE(degamma);
+        const std::string xml =
+            std::string("<Scene><Cameras><Camera id=\"1\"><Position>0 0 5</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+                        "<NearPlane>-0.001 0.001 -0.001 0.001</NearPlane><NearDistance>1</NearDistance>"
+                        "<ImageResolution>1 1</ImageResolution><ImageName>x.exr</ImageName></Camera></Cameras>"
+                        "<Lights><PointLight id=\"1\"><Position>0 0 5</Position><Intensity>1600 1600 1600</Intensity></PointLight></Lights>"
+                        "<Materials><Material id=\"1\"") +
+            (degamma ? " degamma=\"true\"" : "") +
+            "><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance></Material></Materials>"
+            "<VertexData>0 0 0</VertexData><Objects><Sphere id=\"1\"><Material>1</Material><Center>1</Center>"
+            "<Radius>1</Radius></Sphere></Objects></Scene>";
+        const whitted_scene s = load_xml_scene(dir.write("degamma.xml", xml));
+        CHECK(s.warnings.empty());
+        const double expected = degamma ? 100 * std::pow(0.5, 2.2) : 50;
+        CHECK(render_whitted(s, 0).img.pixel(0, 0).x() == doctest::Approx(expected).epsilon(1e-3));
+    }
+}
+
+} // namespace test_course_brdf

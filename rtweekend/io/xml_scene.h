@@ -614,6 +614,18 @@ class xml_scene_reader {
                 if (node n = child(m, "AbsorptionIndex", false)) p.absorption_index = bounded(n, owner, 0, false);
                 if (node n = child(m, "AbsorptionCoefficient", false)) p.absorption_coefficient = colour(n, owner);
                 if (node n = child(m, "Roughness", false)) p.roughness = bounded(n, owner, 0, false);
+                if (flag(m, "degamma", owner)) {
+                    // degamma="true" (homework 5): the colours are display values; each reflectance
+                    // c is read as c^2.2, the gamma every course <Tonemap> uses (the course says no
+                    // more: docs/course.md).
+                    auto linear = [](color& c) {
+                        for (int k = 0; k < 3; ++k) c[k] = std::pow(c[k], 2.2);
+                    };
+                    linear(p.ambient);
+                    linear(p.diffuse);
+                    linear(p.specular);
+                    linear(p.mirror);
+                }
                 if (attr(m, "BRDF")) {
                     const long long b = attribute_integer(m, "BRDF", 0);
                     auto it = brdfs_.find(b);
