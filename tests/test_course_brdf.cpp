@@ -173,6 +173,21 @@ TEST_CASE("course BRDFs: one line for a BRDF that is not there or malformed") {
 
 namespace test_course_brdf {
 
+TEST_CASE("course materials: colours may be written with commas, \"0.5, 0.5, 0.5\"") {
+    test::scratch_dir dir("course_commas");
+    auto scene = [&](const std::string& kd) {
+        return "<Scene><Cameras><Camera id=\"1\"><Position>0 0 5</Position><Gaze>0 0 -1</Gaze><Up>0 1 0</Up>"
+               "<NearPlane>-1 1 -1 1</NearPlane><NearDistance>1</NearDistance><ImageResolution>2 2</ImageResolution>"
+               "<ImageName>x.exr</ImageName></Camera></Cameras><Materials><Material id=\"1\"><DiffuseReflectance>" +
+               kd + "</DiffuseReflectance></Material></Materials><VertexData>0 0 0</VertexData><Objects><Sphere id=\"1\">"
+               "<Material>1</Material><Center>1</Center><Radius>1</Radius></Sphere></Objects></Scene>";
+    };
+    CHECK_NOTHROW(load_xml_scene(dir.write("commas.xml", scene("0.5, 0.25,0.125"))));
+    // A decimal comma is two numbers: refused, not misread.
+    CHECK_THROWS_WITH_AS(load_xml_scene(dir.write("decimal.xml", scene("0,5 0,5 0,5"))),
+                         doctest::Contains("has 6 numbers"), scene_error);
+}
+
 TEST_CASE("course materials: degamma=\"true\" reads each reflectance c as c^2.2") {
     // A sphere of kd 0.5 seen and lit head on from 4 units away by a point light of intensity
     // 1600: E = 100, the pixel 100 kd; with degamma 100 x 0.5^2.2 = 21.764.

@@ -191,6 +191,11 @@ TEST_CASE("course path tracer: the reader's <Renderer> and <RendererParams>") {
         return "";
     };
     CHECK(error_of("<Renderer>Photon</Renderer>").find("<Renderer> 'Photon' is not supported") != std::string::npos);
+    // DirectLighting names the classic renderer, as no <Renderer> does.
+    const whitted_scene direct = load("<Renderer>DirectLighting</Renderer>");
+    CHECK_FALSE(direct.cameras[0].path_tracing.on);
+    CHECK(direct.warnings.empty());
+    CHECK(load("<Renderer>DirectLighting</Renderer><RendererParams>RussianRoulette</RendererParams>").warnings.size() == 1);
     CHECK(error_of("<Renderer>PathTracing</Renderer><RendererParams>NEE</RendererParams>").find("'NEE' is not one of") !=
           std::string::npos);
 }

@@ -373,10 +373,19 @@ class xml_scene_reader {
         }
         return out;
     }
+    // The words of a text: runs between whitespace and commas (some course files write
+    // "0.5, 0.5, 0.5"; a decimal comma such as "1,5" then reads as two numbers, which no element
+    // takes where it wants one, so it is still an error).
     static std::vector<std::string> words(const std::string& s) {
-        std::istringstream in(s);
         std::vector<std::string> out;
-        for (std::string w; in >> w;) out.push_back(w);
+        size_t i = 0;
+        while (i < s.size()) {
+            auto separator = [&](char c) { return c == ',' || std::isspace(static_cast<unsigned char>(c)); };
+            while (i < s.size() && separator(s[i])) ++i;
+            const size_t start = i;
+            while (i < s.size() && !separator(s[i])) ++i;
+            if (i > start) out.emplace_back(s, start, i - start);
+        }
         return out;
     }
     double parse_number(const std::string& word, node el, const std::string& owner) const {
@@ -647,9 +656,11 @@ class xml_scene_reader {
         node renderer = child(c, "Renderer", false);
         if (renderer) {
             const std::string name = trim(text(renderer, owner));
-            if (lower(name) != "pathtracing")
-                fail(renderer, owner, "<Renderer> '" + token_text(name) + "' is not supported (PathTracing is; without a <Renderer>, the classic ray tracer)");
-            cam.path_tracing.on = true;
+            // DirectLighting: the classic renderer, as no <Renderer> is.
+            if (lower(name) == "pathtracing") cam.path_tracing.on = true;
+            else if (lower(name) != "directlighting")
+                fail(renderer, owner, "<Renderer> '" + token_text(name) +
+                                          "' is not supported (PathTracing or DirectLighting, the classic ray tracer)");
         }
         node params = child(c, "RendererParams", false);
         if (!params) return;
@@ -662,7 +673,7 @@ class xml_scene_reader {
                 fail(params, owner, "<RendererParams>: '" + token_text(w) +
                                         "' is not one of NextEventEstimation, ImportanceSampling, RussianRoulette");
         }
-        if (!renderer) {
+        if (!cam.path_tracing.on) {
             const size_t line = line_of(params);
             notes_.push_back(one_line(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " + owner +
                                       ": <RendererParams> without <Renderer>PathTracing</Renderer> is ignored (the classic ray tracer takes none)"));
