@@ -551,6 +551,15 @@ class xml_scene_reader {
         return bytes;
     }
 
+    // An element's id: required, and not yet taken in `defined` (`what` names the kind).
+    template <class Map>
+    long long new_id(node el, const std::string& owner, const Map& defined, const std::string& what) const {
+        if (!attr(el, "id")) fail(el, owner, "missing attribute id");
+        const long long id = attribute_integer(el, "id", 0);
+        if (defined.count(id)) fail(el, owner, what + " id " + std::to_string(id) + " is defined twice");
+        return id;
+    }
+
     // A true|false attribute (absent: false).
     bool flag(node el, const char* name, const std::string& owner) const {
         pugi::xml_attribute a = attr(el, name);
@@ -579,9 +588,7 @@ class xml_scene_reader {
                 else continue; // warned about as unread
                 mark(b);
                 const std::string owner = element_name(b);
-                if (!attr(b, "id")) fail(b, owner, "missing attribute id");
-                const long long id = attribute_integer(b, "id", 0);
-                if (brdfs_.count(id)) fail(b, owner, "BRDF id " + std::to_string(id) + " is defined twice");
+                const long long id = new_id(b, owner, brdfs_, "BRDF");
                 if (brdf.model == model::modified_phong || brdf.model == model::modified_blinn_phong)
                     brdf.normalized = flag(b, "normalized", owner);
                 if (brdf.model == model::torrance_sparrow) brdf.kd_fresnel = flag(b, "kdfresnel", owner);
@@ -716,11 +723,8 @@ class xml_scene_reader {
                 if (!letter) continue; // warned about as unread
                 mark(t);
                 const std::string owner = element_name(t);
-                if (!attr(t, "id")) fail(t, owner, "missing attribute id");
-                const long long id = attribute_integer(t, "id", 0);
                 auto& kind = transformations_[letter];
-                if (kind.count(id))
-                    fail(t, owner, "<" + name + "> id " + std::to_string(id) + " is defined twice");
+                const long long id = new_id(t, owner, kind, "<" + name + ">");
                 affine_map m;
                 if (letter == 't') {
                     m = affine_map::linear(mat3(), triple(t, owner));
@@ -976,9 +980,7 @@ class xml_scene_reader {
                 for (node i : images.children("Image")) {
                     mark(i);
                     const std::string owner = element_name(i);
-                    if (!attr(i, "id")) fail(i, owner, "missing attribute id");
-                    const long long id = attribute_integer(i, "id", 0);
-                    if (images_.count(id)) fail(i, owner, "image id " + std::to_string(id) + " is defined twice");
+                    const long long id = new_id(i, owner, images_, "image");
                     images_[id] = i;
                 }
             }
