@@ -28,6 +28,11 @@ struct surface_hit {
     uint32_t material = 0; // index into compiled_scene::materials
     shape_kind kind{};     // which shape was hit: its kind and index in its set
     uint32_t index = 0;
+    // An instance's hit (kind is the instance kind, index the instance): the shape inside its
+    // object, by kind and index in the object's own sets. The course's textures find the
+    // triangle's corners and texture coordinates in the object's frame through it.
+    shape_kind object_kind{};
+    uint32_t object_index = 0;
     // Set when a user-written hittable was hit: its record, in world coordinates.
     const hittable* user_shape = nullptr;
     hit_record user_record;

@@ -248,6 +248,8 @@ void instance_set::complete_hit(const Scene& scene, const ray3f& r, float, uint3
     hit.shading_normal = normalize(back.transposed(inner.shading_normal));
     hit.front_face = inner.front_face;
     hit.material = inner.material;
+    hit.object_kind = inner.kind;
+    hit.object_index = inner.index;
     if (scene.materials[inner.material].texture != no_texture) {
         // Texture coordinates belong to the shape in its own frame (as the book's transforms
         // compute them, hitting the object in its frame): asked of the object now.
