@@ -29,7 +29,7 @@ void print_usage(std::FILE* to) {
     std::fprintf(to,
                  "usage: compare IMAGE REFERENCE [--cells N] [--help]\n"
                  "%s\n"
-                 "  IMAGE, REFERENCE  PPM (P3 or P6), PFM, EXR, PNG, BMP or Radiance HDR files of the same size\n"
+                 "  IMAGE, REFERENCE  PPM (P3 or P6), PFM, EXR, PNG, BMP, JPEG or Radiance HDR files of the same size\n"
                  "  --cells N         also print where the error lies: the image cut into N x N pixel\n"
                  "                    cells from the top left, each cell's percentage of the summed\n"
                  "                    squared error (linear if both files are, else 8-bit codes),\n"

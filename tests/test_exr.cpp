@@ -280,7 +280,7 @@ TEST_CASE("exr.h: truncated, garbage and oversized files give one error naming t
         check_error(dir.write("bad.exr", bad), "EXR");
     }
     SUBCASE("not an EXR at all, named .exr") {
-        check_error(dir.write("text.exr", "hello world\n"), "not a PPM (P3/P6), PFM, EXR, PNG, BMP or Radiance HDR file");
+        check_error(dir.write("text.exr", "hello world\n"), "not a PPM (P3/P6), PFM, EXR, PNG, BMP, JPEG or Radiance HDR file");
     }
     SUBCASE("a data window of 65536 x 65536, more pixels than the limit, refused before decoding") {
         std::string huge = good;

@@ -217,7 +217,7 @@ TEST_CASE("read_image: missing, truncated and malformed files throw, naming the 
     check_read_error((dir.path / "missing.pfm").string(), "No such file");
     check_read_error(dir.path.string(), "directory");
     check_read_error(dir.write("empty.ppm", ""), "empty");
-    check_read_error(dir.write("text.ppm", "hello world\n"), "not a PPM (P3/P6), PFM, EXR, PNG, BMP or Radiance HDR file");
+    check_read_error(dir.write("text.ppm", "hello world\n"), "not a PPM (P3/P6), PFM, EXR, PNG, BMP, JPEG or Radiance HDR file");
     check_read_error(dir.write("p5.ppm", "P5\n1 1\n255\n\x01"), "not a PPM");
 
     // PPM headers.

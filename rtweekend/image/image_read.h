@@ -2,8 +2,9 @@
 // image_read: reading image files back, to compare a render with a reference (metrics.h).
 //
 //   read_image(path)            PPM (P3 and P6, maxval 1..65535, '#' comments in the header),
-//                               PFM ('PF' colour and 'Pf' grey, either byte order), PNG and BMP
-//                               (through stb_image), OpenEXR (through the OpenEXR library, when
+//                               PFM ('PF' colour and 'Pf' grey, either byte order), PNG, BMP and
+//                               JPEG (through stb_image; a JPEG's data read through by libjpeg
+//                               first when the build has it), OpenEXR (through the OpenEXR library, when
 //                               the build has it: exr.h), Radiance HDR (through stb_image). The format is recognised by the file's first
 //                               bytes, not by its name. Throws scene_error naming the path.
 //   decode_image(bytes, name)   the same, from bytes in memory; `name` goes in the messages.
@@ -12,7 +13,7 @@
 //   - PFM, EXR and HDR hold linear radiance: `pixels` are their values as float (EXR half and uint
 //     channels converted exactly, HDR's shared-exponent RGBE as stb_image expands it),
 //     display_encoded = false.
-//   - PPM, PNG and BMP hold display-encoded values (our writers apply gamma 2 and the book's
+//   - PPM, PNG, BMP and JPEG hold display-encoded values (our writers apply gamma 2 and the book's
 //     8-bit quantisation): `pixels` are the stored codes on the 8-bit scale 0..255, as floats,
 //     display_encoded = true. A PPM with maxval M other than 255 is put on that scale as
 //     code * 255 / M, so its values need not be whole numbers.
@@ -56,8 +57,8 @@ inline constexpr char slice_trailer_magic[] = "\nrtweekend-slice ";
 
 struct loaded_image {
     image pixels;                  // linear radiance, or codes on the 8-bit scale 0..255
-    bool display_encoded = false;  // true for PPM, PNG and BMP files
-    std::string format;            // "PPM P3", "PPM P6", "PFM", "EXR", "PNG" or "BMP", for messages
+    bool display_encoded = false;  // true for PPM, PNG, BMP and JPEG files
+    std::string format;            // "PPM P3", "PPM P6", "PFM", "EXR", "PNG", "BMP", "JPEG" or "HDR", for messages
 };
 
 loaded_image read_image(const std::string& path);
@@ -351,9 +352,10 @@ inline loaded_image decode_image(const std::string& bytes, const std::string& na
     if (starts_with("PF", 2) || starts_with("Pf", 2)) return detail::decode_pfm(bytes, name);
     if (starts_with("\x89PNG\r\n\x1a\n", 8)) return detail::decode_png(bytes, name);
     if (starts_with("BM", 2)) return detail::decode_bmp(bytes, name);
+    if (starts_with("\xff\xd8\xff", 3)) return detail::decode_with_stb(bytes, name, "JPEG");
     if (starts_with("\x76\x2f\x31\x01", 4)) return loaded_image{decode_exr(bytes, name), false, "EXR"};
     if (starts_with("#?RADIANCE\n", 11) || starts_with("#?RGBE\n", 7)) return detail::decode_hdr(bytes, name);
-    detail::read_error(name, "not a PPM (P3/P6), PFM, EXR, PNG, BMP or Radiance HDR file");
+    detail::read_error(name, "not a PPM (P3/P6), PFM, EXR, PNG, BMP, JPEG or Radiance HDR file");
 }
 
 inline loaded_image read_image(const std::string& path) {
