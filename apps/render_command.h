@@ -224,12 +224,15 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
                                    const std::vector<std::string>& outputs) {
     // What the path tracer does not take from a course scene yet: the lights of homeworks 3 and 5
-    // are refused (an image without them would be wrong), the cameras' distribution settings are
+    // and the texture maps of homework 4 are refused (an image without them would be wrong), the cameras' distribution settings are
     // named in a warning (--spp replaces NumSamples; no lens).
     if (!scene.directional_lights.empty() || !scene.spot_lights.empty() || !scene.area_lights.empty() ||
         !scene.light_meshes.empty() || !scene.light_spheres.empty() || !scene.environment_lights.empty())
         throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's directional, "
                               "spot, area, object or environment lights yet: render this scene in Whitted mode (without --integrator)");
+    if (!scene.textured_objects.empty() || scene.background_texture)
+        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's texture maps yet: "
+                              "render this scene in Whitted mode (without --integrator)");
     for (const rt::view_camera& c : scene.cameras)
         if (c.samples > 1 || c.aperture > 0) {
             std::fprintf(stderr, "render: warning: --integrator path takes --spp rather than <NumSamples>, and renders "

@@ -15,6 +15,7 @@
 
 #include "test_helpers.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -227,18 +228,18 @@ TEST_CASE("course scene: a lookAt camera takes <Gaze> as a direction, handedness
 TEST_CASE("course scene: every element and attribute not read is one warning naming it and its line") {
     std::string text = scene_xml("", "0 0 0",
                                  "<Sphere id=\"1\" shadingMode=\"smooth\"><Material>1</Material><Center>1</Center>"
-                                 "<Radius>1</Radius>\n<Textures>1</Textures></Sphere>\n"
+                                 "<Radius>1</Radius>\n<Texture>1</Texture></Sphere>\n"
                                  "<Cylinder id=\"2\"><Radius>1</Radius></Cylinder>");
     text.replace(text.find("<Camera id=\"1\">"), 15, "<Camera id=\"1\">\n<Exposure>2</Exposure>");
     whitted_scene s = load_text(text, "warn.xml");
     REQUIRE(s.warnings.size() == 4);
     // Line 3: <Exposure>, which no homework has (the camera then ends on line 7; lights, materials, transformations
     // and vertices take a line each); line 12: the sphere's attribute (not read on spheres), line
-    // 13 its <Textures>; line 14: a cylinder (no homework has one), whose children are not looked at.
+    // 13 its <Texture> (the 2018 format's, which no later homework has); line 14: a cylinder (no homework has one), whose children are not looked at.
     CHECK(s.warnings[0].find("warn.xml:3: <Exposure> is not supported yet and is ignored") != std::string::npos);
     CHECK(s.warnings[1].find("warn.xml:12: <Sphere id=\"1\">: attribute shadingMode=\"smooth\" is not supported yet") !=
           std::string::npos);
-    CHECK(s.warnings[2].find("warn.xml:13: <Textures> is not supported yet") != std::string::npos);
+    CHECK(s.warnings[2].find("warn.xml:13: <Texture> is not supported yet") != std::string::npos);
     CHECK(s.warnings[3].find("warn.xml:14: <Cylinder id=\"2\"> is not supported yet") != std::string::npos);
     // The level-1 test scene has nothing unread.
     CHECK(load_xml_scene(std::string(RTWEEKEND_TEST_DATA) + "/xml/scene.xml").warnings.empty());
@@ -699,6 +700,18 @@ TEST_CASE("course scene: binary vertex and face files read as their text twins")
     CHECK(mesh(binary)->faces == mesh(text)->faces);
     CHECK(binary.warnings.empty());
     CHECK(binary.files.size() == 3); // the scene and both binary files
+    // Texture coordinates the same way (homework 4's form of sponza): a count, then u v float32
+    // pairs, one per vertex; the mesh's corners take them by their vertex ids.
+    std::string uv = le32(4);
+    for (float c : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f, 0.125f, 0.375f, 0.625f}) uv += f32(c);
+    dir.write("t.bin", uv);
+    const whitted_scene with_uv = load_xml_scene(dir.write(
+        "uv.xml", scene_text("<VertexData binaryFile=\"v.bin\"/><TexCoordData binaryFile=\"t.bin\"/>", "<Faces>3 1 4</Faces>")));
+    REQUIRE(mesh(with_uv)->face_uvs.size() == 1);
+    const auto& corner = mesh(with_uv)->face_uvs[0];
+    CHECK(mesh(with_uv)->uvs[corner[0]] == std::array<double, 2>{1.0, 0.125});   // vertex 3
+    CHECK(mesh(with_uv)->uvs[corner[1]] == std::array<double, 2>{0.0, 0.25});    // vertex 1
+    CHECK(mesh(with_uv)->uvs[corner[2]] == std::array<double, 2>{0.375, 0.625}); // vertex 4
     // A file whose size does not match its count, and one that is missing: one line each.
     dir.write("short.bin", le32(3) + f32(1));
     const std::string short_error = error_of(scene_text("<VertexData binaryFile=\"" + dir.file("short.bin") + "\"/>", "<Faces>1 2 3</Faces>"));

@@ -18,8 +18,10 @@
 #include "../vec3.h"
 #include "../whitted_material.h"
 #include "course_lights.h"
+#include "course_textures.h"
 #include "view_camera.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,10 @@ struct whitted_scene {
     std::vector<light_sphere> light_spheres;
     std::vector<environment_light> environment_lights; // rays that miss see their sum (not the background)
     std::vector<view_camera> cameras;
+    // Objects with texture maps (homework 4; course_textures.h), each with its own material, and
+    // the map that replaces the background colour for camera rays that miss (replace_background).
+    std::vector<textured_object> textured_objects;
+    std::optional<texture_map> background_texture;
     hittable_list world;                // spheres, triangles and meshes with whitted_material materials
     // The files the scene was read from (load_xml_scene): the XML file, then its PLY meshes. Empty
     // for a scene built in code. A fingerprint of the scene hashes them (render_mpi's ranks check

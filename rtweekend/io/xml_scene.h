@@ -62,9 +62,15 @@
 // <Renderer>PathTracing</Renderer> and <RendererParams> (view_camera::path_tracing; the course's
 // path tracer of course/whitted.h).
 //
-// Not read yet (later homeworks): textures and <TexCoordData>, environment lights. Each such element, and any other the lists
-// above do not name, and any attribute they do not name, is one warning
-// (whitted_scene::warnings: "scene.xml:12: <TexCoordData> is not supported yet and is ignored"; at
+// Textures (homework 4): <Textures> with <Images> and <TextureMap id type degamma> (DecalMode,
+// ImageId, Interpolation, Normalizer, BumpFactor, NoiseScale, NoiseConversion, Scale, Offset,
+// BlackColor, WhiteColor: course/course_textures.h); an object's <Textures>k1 k2</Textures> gives it
+// a material of its own and records it in whitted_scene::textured_objects; <TexCoordData> (u v per
+// vertex, numbered like the vertices; binaryFile too) with <Faces textureOffset="k">.
+// <SphericalDirectionalLight><ImageId> (homework 5) is an environment light.
+//
+// Anything else: each element the lists above do not name, and any attribute they do not name, is one warning
+// (whitted_scene::warnings: "scene.xml:12: <Cylinder id="2"> is not supported yet and is ignored"; at
 // most 20, then a count of the rest); the scene renders without it. <VertexData binaryFile="f">
 // and <Faces binaryFile="f"> (homework 6's sponza) read a little-endian int32 count and then that
 // many float32 x y z or int32 index triples, relative to the scene's folder; any other size of
@@ -237,6 +243,8 @@ class xml_scene_reader {
         read_transformations(root);
         read_cameras(root, scene);
         read_images(root);
+        read_tex_coords(root);
+        read_texture_maps(root, scene);
         read_lights(root, scene);
         read_objects(root, scene);
         scene.files.insert(scene.files.end(), ply_files_.begin(), ply_files_.end());
@@ -504,15 +512,13 @@ class xml_scene_reader {
         node data = child(root, "VertexData", false);
         if (!data) return;
         if (attr(data, "binaryFile")) {
-            const std::string bytes = binary_file(data, "<Scene>", 12);
-            for (size_t at = 4; at < bytes.size(); at += 12) {
-                float xyz[3];
-                std::memcpy(xyz, bytes.data() + at, 12);
-                for (float c : xyz)
-                    if (!std::isfinite(c)) fail(data, "<Scene>", "<VertexData binaryFile>: vertex " + std::to_string((at - 4) / 12 + 1) + " is not finite");
-                vertices_.emplace_back(xyz[0], xyz[1], xyz[2]);
+            const std::vector<double> xyz = binary_values<float, double>(data, "<Scene>", 12);
+            for (size_t i = 0; i < xyz.size(); i += 3) {
+                for (size_t c = 0; c < 3; ++c)
+                    if (!std::isfinite(xyz[i + c]))
+                        fail(data, "<Scene>", "<VertexData binaryFile>: vertex " + std::to_string(i / 3 + 1) + " is not finite");
+                vertices_.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
             }
-            if (!words(text(data, "<Scene>")).empty()) fail(data, "<Scene>", "<VertexData> has both a binaryFile and numbers");
             return;
         }
         std::vector<double> v = numbers(data, "<Scene>", 0, static_cast<size_t>(-1));
@@ -549,6 +555,22 @@ class xml_scene_reader {
         const uint16_t probe = 1;
         if (*reinterpret_cast<const uint8_t*>(&probe) != 1) fail(el, owner, "binary geometry files need a little-endian machine");
         return bytes;
+    }
+
+    // The values of an element's binaryFile after its count (4 bytes each, float32 or int32 as
+    // Stored), as Out; refused when the element has numbers of its own as well.
+    template <class Stored, class Out>
+    std::vector<Out> binary_values(node el, const std::string& owner, size_t record) {
+        static_assert(sizeof(Stored) == 4, "4-byte values");
+        if (!words(text(el, owner)).empty()) fail(el, owner, tag(el) + " has both a binaryFile and numbers");
+        const std::string bytes = binary_file(el, owner, record);
+        std::vector<Out> out((bytes.size() - 4) / 4);
+        for (size_t k = 0; k < out.size(); ++k) {
+            Stored x;
+            std::memcpy(&x, bytes.data() + 4 + 4 * k, 4);
+            out[k] = Out(x);
+        }
+        return out;
     }
 
     // An element's id: required, and not yet taken in `defined` (`what` names the kind).
@@ -970,8 +992,7 @@ class xml_scene_reader {
     }
 
     // <Textures><Images><Image id="k">path</Image>...: the images, by id, as the file names them
-    // (relative to its folder). An environment light reads its image (image_of); the texture maps
-    // that use the others are not read yet (each is warned about).
+    // (relative to its folder). Environment lights and texture maps read theirs (image_of).
     void read_images(node root) {
         for (node section : root.children("Textures")) {
             mark(section);
@@ -985,6 +1006,135 @@ class xml_scene_reader {
                 }
             }
         }
+    }
+
+    // <TexCoordData>: u v per vertex, indexed like <VertexData> (a binaryFile: an int32 count, then
+    // count pairs of float32).
+    void read_tex_coords(node root) {
+        node data = child(root, "TexCoordData", false);
+        if (!data) return;
+        const std::vector<double> v = attr(data, "binaryFile") ? binary_values<float, double>(data, "<Scene>", 8)
+                                                               : numbers(data, "<Scene>", 0, static_cast<size_t>(-1));
+        if (v.size() % 2 != 0)
+            fail(data, "<Scene>", "<TexCoordData> has " + std::to_string(v.size()) + " numbers, not a multiple of 2 (u v per vertex)");
+        for (size_t i = 0; i < v.size(); i += 2) {
+            if (!std::isfinite(v[i]) || !std::isfinite(v[i + 1]))
+                fail(data, "<Scene>", "<TexCoordData>: texture coordinate " + std::to_string(i / 2 + 1) + " is not finite");
+            tex_coords_.push_back({v[i], v[i + 1]});
+        }
+    }
+
+    // <Textures><TextureMap id type="image|perlin|checkerboard" degamma>: see course_textures.h
+    // for what each child means. A replace_background map is the scene's background texture.
+    void read_texture_maps(node root, whitted_scene& scene) {
+        for (node section : root.children("Textures"))
+            for (node t : section.children("TextureMap")) {
+                mark(t);
+                const std::string owner = element_name(t);
+                const long long id = new_id(t, owner, texture_maps_, "texture map");
+                texture_map map;
+                using pattern = texture_map::pattern_t;
+                using decal = texture_map::decal_t;
+                const std::string type = lower(trim(attr(t, "type").value()));
+                if (type == "image") map.pattern = pattern::image;
+                else if (type == "perlin") map.pattern = pattern::perlin;
+                else if (type == "checkerboard") map.pattern = pattern::checkerboard;
+                else
+                    fail(t, owner, type.empty() ? "missing attribute type (image, perlin or checkerboard)"
+                                                : "unknown type \"" + token_text(attr(t, "type").value()) +
+                                                      "\" (expected image, perlin or checkerboard)");
+                map.degamma = flag(t, "degamma", owner);
+                node mode = child(t, "DecalMode", true);
+                const std::string m = lower(trim(text(mode, owner)));
+                static const std::pair<const char*, decal> modes[] = {
+                    {"replace_kd", decal::replace_kd},         {"blend_kd", decal::blend_kd},
+                    {"replace_ks", decal::replace_ks},         {"replace_all", decal::replace_all},
+                    {"replace_normal", decal::replace_normal}, {"bump_normal", decal::bump_normal},
+                    {"replace_background", decal::replace_background}};
+                bool known = false;
+                for (const auto& [name, value] : modes)
+                    if (m == name) map.decal = value, known = true;
+                if (!known)
+                    fail(mode, owner, "unknown <DecalMode> '" + token_text(trim(text(mode, owner))) +
+                                          "' (expected replace_kd, blend_kd, replace_ks, replace_all, replace_normal, "
+                                          "bump_normal or replace_background)");
+                const bool needs_image = map.decal == decal::replace_normal || map.decal == decal::replace_background;
+                if (needs_image && map.pattern != pattern::image)
+                    fail(mode, owner, m + " needs an image map, not " + type);
+                if (map.decal == decal::bump_normal && map.pattern == pattern::checkerboard)
+                    fail(mode, owner, "bump_normal needs an image or perlin map, not a checkerboard");
+                if (map.pattern == pattern::image) {
+                    std::string path;
+                    node ref = child(t, "ImageId", true);
+                    map.picture = image_of(ref, owner, path);
+                    const bool encoded = image_encoded_[integer(ref, owner)];
+                    map.normalizer = encoded ? 255.0f : 1.0f; // 8-bit codes, or radiance as it is
+                    if (node n = child(t, "Normalizer", false)) map.normalizer = float(bounded(n, owner, 0, true));
+                    if (node n = child(t, "Interpolation", false)) {
+                        const std::string i = lower(trim(text(n, owner)));
+                        if (i == "bilinear") map.bilinear = true;
+                        else if (i != "nearest")
+                            fail(n, owner, "unknown <Interpolation> '" + token_text(trim(text(n, owner))) +
+                                               "' (expected nearest or bilinear)");
+                    }
+                }
+                if (node n = child(t, "BumpFactor", false)) map.bump_factor = float(finite(n, owner));
+                if (map.pattern == pattern::perlin) {
+                    if (node n = child(t, "NoiseScale", false)) map.noise_scale = float(finite(n, owner));
+                    if (node n = child(t, "NoiseConversion", false)) {
+                        const std::string c = lower(trim(text(n, owner)));
+                        if (c == "absval") map.absval = true;
+                        else if (c != "linear")
+                            fail(n, owner, "unknown <NoiseConversion> '" + token_text(trim(text(n, owner))) +
+                                               "' (expected linear or absval)");
+                    }
+                }
+                if (map.pattern == pattern::checkerboard) {
+                    if (node n = child(t, "Scale", false)) map.scale = finite(n, owner);
+                    if (node n = child(t, "Offset", false)) map.offset = finite(n, owner);
+                    if (node n = child(t, "BlackColor", false)) map.black = vec3f(colour(n, owner));
+                    if (node n = child(t, "WhiteColor", false)) map.white = vec3f(colour(n, owner));
+                }
+                if (map.decal == decal::replace_background) {
+                    if (scene.background_texture)
+                        fail(t, owner, "a second replace_background map (one background per scene)");
+                    scene.background_texture = map;
+                }
+                texture_maps_[id] = std::move(map);
+            }
+    }
+    // A number that must be finite (any sign).
+    double finite(node el, const std::string& owner) const {
+        const double x = scalar(el, owner);
+        if (!std::isfinite(x)) fail(el, owner, tag(el) + " must be a finite number");
+        return x;
+    }
+
+    // An object's <Textures>k1 k2</Textures> (homework 4): nullptr without one; else a copy of its
+    // material that only this object uses, with the object's maps recorded in the scene (the
+    // renderer finds the object by that material: course_textures.h).
+    std::shared_ptr<whitted_material> textured(node o, const std::string& owner, const std::shared_ptr<whitted_material>& given,
+                                               textured_object::shape_t shape, const affine_map& placed,
+                                               whitted_scene& scene, const point3& center = point3(0, 0, 0),
+                                               double radius = 1) {
+        node list = child(o, "Textures", false);
+        if (!list) return nullptr;
+        textured_object t;
+        for (long long id : integers(list, owner)) {
+            auto it = texture_maps_.find(id);
+            if (it == texture_maps_.end())
+                fail(list, owner, "<Textures> names texture map " + std::to_string(id) + ", which <Textures> does not define");
+            if (it->second.decal != texture_map::decal_t::replace_background) t.maps.push_back(it->second);
+        }
+        auto copy = std::make_shared<whitted_material>(*given);
+        t.surface = copy;
+        t.shape = shape;
+        t.center = center;
+        t.radius = radius;
+        t.linear = placed.m;
+        t.offset = placed.t;
+        scene.textured_objects.push_back(std::move(t));
+        return copy;
     }
 
     // The image `ref` (an <ImageId>) names, read once: linear values as the file holds them (an
@@ -1011,6 +1161,7 @@ class xml_scene_reader {
                 fail(ref, owner, tag(ref) + " " + std::to_string(id) + ": " + token_text(file) +
                                      " holds a texel that is negative or not a finite number");
         ply_files_.push_back(path); // hashed with the scene's files
+        image_encoded_[id] = loaded.display_encoded;
         auto img = std::make_shared<const image>(std::move(loaded.pixels));
         loaded_images_[id] = img;
         return img;
@@ -1028,6 +1179,20 @@ class xml_scene_reader {
                                ")");
         }
         return it->second;
+    }
+
+    // The index in <TexCoordData> of face index `id` plus `offset` (textureOffset), numbered like
+    // the vertices. Out of range: refused when `required` (the object has <Textures>), else
+    // UINT32_MAX (the mesh gets no texture coordinates).
+    uint32_t tex_coord_index(long long id, node at, const std::string& owner, long long offset, bool required) const {
+        const long long first = zero_based_ ? 0 : 1;
+        const bool overflows = offset > 0 ? id > LLONG_MAX - offset : id < LLONG_MIN - offset;
+        const long long shifted = overflows ? first - 1 : id + offset;
+        if (shifted >= first && shifted - first < (long long)tex_coords_.size()) return uint32_t(shifted - first);
+        if (!required) return UINT32_MAX;
+        fail(at, owner, "texture coordinate " + std::to_string(id) +
+                            (offset != 0 ? " + textureOffset " + std::to_string(offset) : std::string()) +
+                            " does not exist (<TexCoordData> has " + std::to_string(tex_coords_.size()) + ")");
     }
 
     // The 0-based index of vertex id `id` (as the file gives it, `offset` already added).
@@ -1067,6 +1232,7 @@ class xml_scene_reader {
                     mark(o);
                     auto mat = material_of(o, owner);
                     const affine_map m = object_transform(o, owner);
+                    if (auto mapped = textured(o, owner, mat, textured_object::shape_t::mesh, m, scene)) mat = mapped;
                     node idx = child(o, "Indices", true);
                     std::vector<long long> ids = integers(idx, owner);
                     if (ids.size() != 3)
@@ -1087,15 +1253,22 @@ class xml_scene_reader {
                         mesh->positions.push_back(
                             vertices_[vertex_index(id, idx, owner, "<Indices> vertex " + std::to_string(id))]);
                     mesh->faces.push_back({first, first + 1, first + 2});
+                    if (child(o, "Textures", false) && !tex_coords_.empty()) {
+                        // A textured triangle has a mesh of its own: its corners' texture coordinates.
+                        for (long long id : ids) mesh->uvs.push_back(tex_coords_[tex_coord_index(id, idx, owner, 0, true)]);
+                        mesh->face_uvs.push_back({first, first + 1, first + 2});
+                    }
                 } else if (name == "Mesh") {
                     mark(o);
                     const placed_mesh& p = resolve_mesh(o);
-                    scene.world.add(blurred(o, owner, place(p.geometry, p.matrix)));
+                    auto mapped = textured(o, owner, p.material, textured_object::shape_t::mesh, p.matrix, scene);
+                    scene.world.add(blurred(o, owner, place(mapped ? with_material(p.geometry, mapped) : p.geometry, p.matrix)));
                 } else if (name == "MeshInstance") {
                     mark(o);
                     std::set<const void*> visiting;
                     const placed_mesh p = resolve_instance(o, visiting);
-                    scene.world.add(blurred(o, owner, place(with_material(p.geometry, p.material), p.matrix)));
+                    auto mapped = textured(o, owner, p.material, textured_object::shape_t::mesh, p.matrix, scene);
+                    scene.world.add(blurred(o, owner, place(with_material(p.geometry, mapped ? mapped : p.material), p.matrix)));
                 } else if (name == "Sphere") {
                     mark(o);
                     auto mat = material_of(o, owner);
@@ -1103,8 +1276,9 @@ class xml_scene_reader {
                     long long id = integer(center, owner);
                     point3 c = vertices_[vertex_index(id, center, owner, "<Center> vertex " + std::to_string(id))];
                     double radius = bounded(child(o, "Radius", true), owner, 0, true);
-                    scene.world.add(
-                        blurred(o, owner, place(std::make_shared<sphere>(c, radius, mat), object_transform(o, owner))));
+                    const affine_map m = object_transform(o, owner);
+                    if (auto mapped = textured(o, owner, mat, textured_object::shape_t::sphere, m, scene, c, radius)) mat = mapped;
+                    scene.world.add(blurred(o, owner, place(std::make_shared<sphere>(c, radius, mat), m)));
                 } else if (name == "LightMesh" || name == "LightSphere") {
                     mark(o);
                     read_light_object(o, owner, name == "LightMesh", scene);
@@ -1262,25 +1436,33 @@ class xml_scene_reader {
                 fail(faces, owner, "vertexOffset is given on both <Mesh> and <Faces>");
             long long offset = attr(o, "vertexOffset") ? attribute_integer(o, "vertexOffset", 0)
                                                            : attribute_integer(faces, "vertexOffset", 0);
-            std::vector<long long> ids;
-            if (attr(faces, "binaryFile")) {
-                if (!words(text(faces, owner)).empty()) fail(faces, owner, "<Faces> has both a binaryFile and indices");
-                const std::string bytes = binary_file(faces, owner, 12);
-                ids.resize((bytes.size() - 4) / 4);
-                for (size_t k = 0; k < ids.size(); ++k) {
-                    int32_t index;
-                    std::memcpy(&index, bytes.data() + 4 + 4 * k, 4);
-                    ids[k] = index;
-                }
-            } else {
-                ids = integers(faces, owner);
-            }
+            const std::vector<long long> ids = attr(faces, "binaryFile") ? binary_values<int32_t, long long>(faces, owner, 12)
+                                                                         : integers(faces, owner);
             if (ids.empty()) fail(faces, owner, "<Faces> is empty");
             if (ids.size() % 3 != 0)
                 fail(faces, owner, "<Faces> has " + std::to_string(ids.size()) +
                                        " vertex ids, not a multiple of 3 (three per triangle)");
             mesh = std::make_shared<triangle_mesh>();
             mesh->mat = mat;
+            // Texture coordinates (homework 4): face index n names <TexCoordData> entry
+            // n + textureOffset, when the file has them and every corner's is there.
+            const long long tex_offset = attribute_integer(faces, "textureOffset", 0);
+            if (!tex_coords_.empty()) {
+                const bool required = bool(child(o, "Textures", false));
+                std::map<uint32_t, uint32_t> slot;
+                std::vector<uint32_t> corner;
+                for (long long id : ids) {
+                    const uint32_t t = tex_coord_index(id, faces, owner, tex_offset, required);
+                    if (t == UINT32_MAX) break;
+                    auto [it, added] = slot.emplace(t, uint32_t(mesh->uvs.size()));
+                    if (added) mesh->uvs.push_back(tex_coords_[t]);
+                    corner.push_back(it->second);
+                }
+                if (corner.size() == ids.size())
+                    for (size_t i = 0; i < ids.size(); i += 3) mesh->face_uvs.push_back({corner[i], corner[i + 1], corner[i + 2]});
+                else
+                    mesh->uvs.clear();
+            }
             // Only the vertices the mesh uses, in order of first use.
             std::vector<uint32_t> used;
             mesh->faces.reserve(ids.size() / 3);
@@ -1329,6 +1511,9 @@ class xml_scene_reader {
     std::vector<std::string> notes_; // warnings besides the unread elements
     std::map<long long, node> images_; // <Image> by id
     std::map<long long, std::shared_ptr<const image>> loaded_images_;
+    std::map<long long, bool> image_encoded_; // whether the file holds 8-bit codes (PNG, JPEG, ...)
+    std::map<long long, texture_map> texture_maps_;
+    std::vector<std::array<double, 2>> tex_coords_; // <TexCoordData>
     std::map<long long, size_t> material_lines_;
     std::map<char, std::map<long long, affine_map>> transformations_; // by letter t, s, r, c, then id
     std::map<long long, node> meshes_by_id_, instances_by_id_;
