@@ -242,7 +242,7 @@ TEST_CASE("course textures: the background image covers the film from the pixels
     CHECK(bilinear.pixel(3, 2).x() == doctest::Approx(0.5 * 20 + 0.5 * 30 + 100)); // x = 1.5, y = 1
 }
 
-TEST_CASE("course textures: a normal map turns the shading normal in the frame (T, B, N)") {
+TEST_CASE("course textures: a normal map turns the shading normal in the frame (T, B, N) of a square and a sphere") {
     test::scratch_dir dir("course_tex_normal");
     // Every texel (255, 128, 191): n_t = 2 c / 255 - 1 = (1, 0.003922, 0.4980). On the square,
     // T^ = dP/du / |.| = +x, B^ = dP/dv / |.| = -y (v grows downwards), N = +z:
@@ -259,9 +259,17 @@ TEST_CASE("course textures: a normal map turns the shading normal in the frame (
     CHECK(right.x() == doctest::Approx(241.8).epsilon(2e-3));
     // From (-2, 0, 2) the tilted normal faces away: n . l = (-1 + 0.4980) / (sqrt 2 x 1.117) < 0, black.
     CHECK(render_pixel(dir, scene + light_at("-2 0 2", 2040)).x() == 0);
+    // A unit sphere seen from (0, 0, 3) at P = (0, 0, 1): theta = phi = pi / 2, dP/du = 2 pi (P_z, 0,
+    // -P_x) = 2 pi (1, 0, 0) and dP/dv = pi (P_y cos phi, -r sin theta, P_y sin phi) = pi (0, -1, 0):
+    // the square's frame again, so the same normal and, with the lights 2 further out, the same 241.8.
+    const std::string sphere = "<VertexData>0 0 0</VertexData>" + material("1 1 1") + textures(map(1, "image", "replace_normal")) +
+                               "<Objects><Sphere id=\"1\"><Material>1</Material><Textures>1</Textures><Center>1</Center>"
+                               "<Radius>1</Radius></Sphere></Objects>";
+    CHECK(render_pixel(dir, camera("0 0 3", "0 0 -1") + sphere + light_at("2 0 3", 2040)).x() == doctest::Approx(241.8).epsilon(2e-3));
+    CHECK(render_pixel(dir, camera("0 0 3", "0 0 -1") + sphere + light_at("-2 0 3", 2040)).x() == 0);
 }
 
-TEST_CASE("course textures: a bump map from nearest heights, in the mesh's object frame") {
+TEST_CASE("course textures: a bump map from nearest heights, in a mesh's object frame and on a sphere") {
     test::scratch_dir dir("course_tex_bump");
     // Heights 10 x on an 8 x 2 image (R = G = B): at u = 0.5 (column 4) h_u = h(u + 1/8) - h(u) = 10,
     // h_v = 0. With T = dP/du = (2, 0, 0), B = dP/dv = (0, -2, 0), N = +z and BumpFactor 0.01:
@@ -293,6 +301,16 @@ TEST_CASE("course textures: a bump map from nearest heights, in the mesh's objec
     const vec3 s = render_pixel(dir, camera("0 0 3", "0 0 -1") + light_at("0 2 3", 2040) +
                                          textures(map(1, "image", "bump_normal", "<BumpFactor>5</BumpFactor>"), "flat.ppm") + sphere);
     CHECK(s.x() == doctest::Approx(255 / std::sqrt(2.0)).epsilon(1e-3));
+    // The ramp on the sphere: at P = (0, 0, 1), u = 0.25 (column 2, h_u = 10), v = 0.5 (h_v = 0);
+    // T = 2 pi (1, 0, 0), B = pi (0, -1, 0), N = (0, 0, 1), k = 0.01: n' = B x (T + 0.1 N) =
+    // (-0.1 pi, 0, 2 pi^2), n = (-0.01591, 0, 0.99987). Lights at (+-2, 0, 3): E = 255, l = (+-1, 0, 1) / sqrt 2:
+    // 255 (0.99987 -+ 0.01591) / sqrt 2 = 177.4 and 183.2 (180.3 unbumped).
+    const std::string ramp_sphere = camera("0 0 3", "0 0 -1") + textures(map(1, "image", "bump_normal", "<BumpFactor>0.01</BumpFactor>")) + sphere;
+    const vec3 leaning = unit_vector(vec3(-0.1 * 3.14159265358979, 0, 2 * 3.14159265358979 * 3.14159265358979));
+    CHECK(render_pixel(dir, ramp_sphere + light_at("2 0 3", 2040)).x() ==
+          doctest::Approx(255 * dot(leaning, unit_vector(vec3(1, 0, 1)))).epsilon(1e-4)); // 177.4
+    CHECK(render_pixel(dir, ramp_sphere + light_at("-2 0 3", 2040)).x() ==
+          doctest::Approx(255 * dot(leaning, unit_vector(vec3(-1, 0, 1)))).epsilon(1e-4)); // 183.2
 }
 
 TEST_CASE("course textures: Perlin noise is zero on the lattice, continuous and bounded") {
