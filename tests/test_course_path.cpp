@@ -2,12 +2,18 @@
 // ceng795-later.md section 11) against closed forms: a diffusely reflecting box of light meshes
 // (the furnace: L_e (1 + a + a^2 + ...) summed to the depth limit, or to infinity under Russian
 // roulette), a floor under a square light (kd L_e times the view factor of the square), and point
-// lights, which count only through next-event estimation. Each expectation holds for every
+// lights, which count only through next-event estimation; and beside our own path tracer, which
+// sees the same direct light and, per diffuse bounce, 1/pi of the course's indirect light (its
+// units: docs/course.md). Each expectation holds for every
 // combination of the renderer's parameters it names; the tolerance is five standard errors
 // estimated from the spread of 16 pixels that share one expectation.
 
 #include <rtweekend/course/whitted.h>
 #include <rtweekend/io/xml_scene.h>
+#include <rtweekend/render/camera_frame.h>
+#include <rtweekend/render/environment.h>
+#include <rtweekend/render/path_tracer.h>
+#include <rtweekend/scene/scene_compiler.h>
 
 #include <doctest/doctest.h>
 
@@ -15,6 +21,8 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace test_course_path {
 
@@ -198,6 +206,58 @@ TEST_CASE("course path tracer: the reader's <Renderer> and <RendererParams>") {
     CHECK(load("<Renderer>DirectLighting</Renderer><RendererParams>RussianRoulette</RendererParams>").warnings.size() == 1);
     CHECK(error_of("<Renderer>PathTracing</Renderer><RendererParams>NEE</RendererParams>").find("'NEE' is not one of") !=
           std::string::npos);
+}
+
+TEST_CASE("course path tracer: our path tracer sees the same direct light, and 1/pi of each diffuse bounce") {
+    // A point light 0.3 above a floor of kd 0.5, under a black square 0.45 above the floor that hides
+    // it from a ceiling of kd 0.5 at height 1. The camera looks up at the ceiling's point (2, 1, 0),
+    // whose line to the light crosses the square (at x = 0.43): it is lit only by the floor.
+    // Course: MaxRecursionDepth 1 (the ceiling's indirect ray, then the floor's next-event
+    // estimation); ours: two rays per path, each light multiplied by pi (course intensities are pi
+    // times radiometric ones: render's xml_path_lights). Level-1 materials (f = kd) are Lambertians
+    // of albedo kd in ours, kd / pi of the course's f: one bounce is pi times brighter in the course.
+    // On the floor, seen directly, the two must agree: kd I / d^2 cos.
+    const std::string materials = "<Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance></Material>"
+                                  "<Material id=\"2\"><DiffuseReflectance>0 0 0</DiffuseReflectance></Material></Materials>";
+    const std::string geometry =
+        "<VertexData>-20 0 -20 20 0 -20 20 0 20 -20 0 20  -20 1 -20 20 1 -20 20 1 20 -20 1 20"
+        "  -0.8 0.45 -0.8 0.8 0.45 -0.8 0.8 0.45 0.8 -0.8 0.45 0.8</VertexData><Objects>"
+        "<Mesh id=\"1\"><Material>1</Material><Faces>1 3 2 1 4 3</Faces></Mesh>"
+        "<Mesh id=\"2\"><Material>1</Material><Faces>5 6 7 5 7 8</Faces></Mesh>"
+        "<Mesh id=\"3\"><Material>2</Material><Faces>9 10 11 9 11 12</Faces></Mesh></Objects>";
+    const std::string light = "<Lights><PointLight id=\"1\"><Position>0 0.3 0</Position><Intensity>100 100 100</Intensity></PointLight></Lights>";
+    auto both = [&](const std::string& from, const std::string& gaze, int depth, int samples) {
+        test::scratch_dir dir("course_path_ours");
+        const whitted_scene scene = load_xml_scene(dir.write(
+            "s.xml", "<Scene><MaxRecursionDepth>" + std::to_string(depth) + "</MaxRecursionDepth>" +
+                         camera(from, gaze, samples, renderer(true, true, false)) + light + materials + geometry + "</Scene>"));
+        REQUIRE(scene.warnings.empty());
+        const pixel_mean course = mean_of(render_whitted(scene, 0).img);
+        std::vector<point_light> lights = scene.lights;
+        for (point_light& l : lights) l.intensity *= pi_d;
+        const compiled_scene compiled = compile_scene(scene.world, scene.cameras[0].position, lights);
+        render_settings settings;
+        settings.samples_per_pixel = samples;
+        settings.max_depth = depth + 1;
+        settings.quiet = true;
+        const pixel_mean ours =
+            mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img);
+        return std::make_pair(course, ours);
+    };
+    // The floor's point (1, 0, 0) from (1, 0.5, 0.5): d^2 = 1.09, cos = 0.3 / sqrt 1.09:
+    // 0.5 x 100 / 1.09 x 0.2873 = 13.18, in both.
+    const auto [course_direct, ours_direct] = both("1 0.5 0.5", "0 -0.5 -0.5", 0, 16);
+    const double direct = 0.5 * 100 / 1.09 * (0.3 / std::sqrt(1.09));
+    CHECK(course_direct.mean == doctest::Approx(direct).epsilon(1e-3));
+    CHECK(ours_direct.mean == doctest::Approx(direct).epsilon(1e-3));
+    // The ceiling: the course's mean is pi times ours, within five standard errors of each.
+    const auto [course_indirect, ours_indirect] = both("2 0.5 0", "0 1 0", 1, 4096);
+    INFO(course_indirect.mean << " +- " << course_indirect.error << ", ours x pi " << pi_d * ours_indirect.mean << " +- "
+                              << pi_d * ours_indirect.error);
+    CHECK(course_indirect.mean > 0.1);
+    CHECK(std::fabs(course_indirect.mean - pi_d * ours_indirect.mean) <=
+          5 * std::hypot(course_indirect.error, pi_d * ours_indirect.error));
+    CHECK(course_indirect.error < 0.03 * course_indirect.mean);
 }
 
 } // namespace test_course_path
