@@ -720,4 +720,33 @@ TEST_CASE("course scene: binary vertex and face files read as their text twins")
               .find("cannot") != std::string::npos);
 }
 
+TEST_CASE("course scene: a MirrorReflectance without type=\"mirror\" is ignored, with a warning") {
+    // A square at z = -5 facing the camera at the origin, of MirrorReflectance 0.5 and nothing
+    // else; behind the camera a wall of ambient reflectance (1, 0.5, 0.25) under Ia = 100. Typed a
+    // mirror, the centre pixel shows the wall: 0.5 x 100 x (1, 0.5, 0.25) = (50, 25, 12.5).
+    // Untyped (as Blender-exported course scenes write plain materials), the course's renderer
+    // shows no reflection: the square's own shading, 0.
+    auto scene = [](const std::string& type) {
+        return "<Scene><MaxRecursionDepth>1</MaxRecursionDepth><Cameras><Camera id=\"1\"><Position>0 0 0</Position>"
+               "<Gaze>0 0 -1</Gaze><Up>0 1 0</Up><NearPlane>-0.001 0.001 -0.001 0.001</NearPlane><NearDistance>1</NearDistance>"
+               "<ImageResolution>1 1</ImageResolution><ImageName>x.exr</ImageName></Camera></Cameras>"
+               "<Lights><AmbientLight>100 100 100</AmbientLight></Lights><Materials><Material id=\"1\"" + type +
+               "><MirrorReflectance>0.5 0.5 0.5</MirrorReflectance></Material><Material id=\"2\">"
+               "<AmbientReflectance>1 0.5 0.25</AmbientReflectance></Material></Materials>"
+               "<VertexData>-3 -3 -5 3 -3 -5 3 3 -5 -3 3 -5 -3 -3 5 3 -3 5 3 3 5 -3 3 5</VertexData><Objects>"
+               "<Mesh id=\"1\"><Material>1</Material><Faces>1 2 3 1 3 4</Faces></Mesh>"
+               "<Mesh id=\"2\"><Material>2</Material><Faces>5 7 6 5 8 7</Faces></Mesh></Objects></Scene>";
+    };
+    const whitted_scene mirror = load_text(scene(" type=\"mirror\""));
+    CHECK(mirror.warnings.empty());
+    const vec3 seen = render_whitted(mirror, 0).img.pixel(0, 0);
+    CHECK(seen.x() == doctest::Approx(50));
+    CHECK(seen.z() == doctest::Approx(12.5));
+    const whitted_scene plain = load_text(scene(""));
+    REQUIRE(plain.warnings.size() == 1);
+    CHECK(plain.warnings[0].find("<Material id=\"1\">: <MirrorReflectance> of a material without type=\"mirror\"") !=
+          std::string::npos);
+    CHECK(render_whitted(plain, 0).img.pixel(0, 0).x() == 0);
+}
+
 } // namespace test_course_scene

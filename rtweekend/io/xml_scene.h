@@ -19,7 +19,8 @@
 //   <Materials>: <Material id type="mirror|conductor|dielectric"> (no type: plain) with
 //     AmbientReflectance, DiffuseReflectance, SpecularReflectance, PhongExponent,
 //     MirrorReflectance, RefractionIndex (required by conductor and dielectric), AbsorptionIndex,
-//     AbsorptionCoefficient; each optional, defaulting as whitted_material does. One shared
+//     AbsorptionCoefficient; each optional, defaulting as whitted_material does (a plain
+//     material's MirrorReflectance is ignored, with a warning: the course's rule). One shared
 //     whitted_material per material; BRDF="k" names an entry of <BRDFs>;
 //   <BRDFs>: <OriginalPhong>, <ModifiedPhong normalized>, <OriginalBlinnPhong>,
 //     <ModifiedBlinnPhong normalized>, <TorranceSparrow kdfresnel>, each with an id (one numbering
@@ -646,7 +647,20 @@ class xml_scene_reader {
                 if (node n = child(m, "DiffuseReflectance", false)) p.diffuse = colour(n, owner);
                 if (node n = child(m, "SpecularReflectance", false)) p.specular = colour(n, owner);
                 if (node n = child(m, "PhongExponent", false)) p.phong_exponent = bounded(n, owner, 0, false);
-                if (node n = child(m, "MirrorReflectance", false)) p.mirror = colour(n, owner);
+                if (node n = child(m, "MirrorReflectance", false)) {
+                    p.mirror = colour(n, owner);
+                    // The course's rule (its homework-1 text; the instructor's images of Blender-
+                    // exported scenes, galactica's ship and Veach Ajar's floor, show no mirror):
+                    // only a mirror, conductor or dielectric reflects. An untyped material's
+                    // MirrorReflectance is read, said, and not used.
+                    if (type.empty() && (p.mirror.x() > 0 || p.mirror.y() > 0 || p.mirror.z() > 0)) {
+                        p.mirror = color(0, 0, 0);
+                        const size_t line = line_of(n);
+                        notes_.push_back(one_line(path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " +
+                                                  owner + ": <MirrorReflectance> of a material without type=\"mirror\" "
+                                                  "(or conductor or dielectric) is ignored, as the course's renderer ignores it"));
+                    }
+                }
                 bool needs_index = p.kind == kind::conductor || p.kind == kind::dielectric;
                 if (node n = child(m, "RefractionIndex", needs_index)) p.refraction_index = bounded(n, owner, 0, true);
                 if (node n = child(m, "AbsorptionIndex", false)) p.absorption_index = bounded(n, owner, 0, false);
