@@ -66,7 +66,7 @@ void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
                  "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent] [--caustic-paths X]\n"
-                 "          [-o FILE] [--quiet]\n"
+                 "          [--filter F] [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
@@ -85,6 +85,9 @@ void print_usage(const description& d, std::FILE* to) {
                  "  --caustic-paths X with nee: X light paths per pixel per sample find the caustics\n"
                  "               (light through glass or off mirrors onto a surface the camera sees) from\n"
                  "               the lights; default 0.25, 0 = leave them to the camera paths\n"
+                 "  --filter F   the pixel filter: box (the books'; default), tent[:R] (radius R, 1),\n"
+                 "               gaussian[:SIGMA] (0.5; radius 3 sigma) or mitchell[:B,C] (1/3,1/3; radius\n"
+                 "               2), each sampled by importance, so pixels stay independent\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp, or linear .pfm or .exr); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -104,7 +107,7 @@ void print_usage(const description& d, std::FILE* to) {
                      "  --integrator path\n"
                      "               render with the path tracer instead (point lights with indirect light, the\n"
                      "               diffuse reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
-                     "               --adaptive, --estimator, --sampler and --caustic-paths then apply too\n");
+                     "               --adaptive, --estimator, --sampler, --caustic-paths and --filter then apply too\n");
 }
 
 [[noreturn]] void usage_error(const description& d, const std::string& message) {
@@ -195,6 +198,13 @@ options parse_arguments(int argc, char** argv, const description& d) {
             rt::path_estimator e;
             if (!rt::parse_estimator(v, e)) stop_parsing("--estimator needs nee, bsdf or mixture, got '" + v + "'");
             o.estimator = e;
+        } else if (arg == "--filter") {
+            const std::string v = next();
+            try {
+                o.filter = rt::parse_pixel_filter(v);
+            } catch (const rt::scene_error& e) {
+                stop_parsing(std::string("--filter: ") + e.what());
+            }
         } else if (arg == "--sampler") {
             std::string v = next();
             rt::sampler_kind k;
@@ -232,9 +242,9 @@ options parse_arguments(int argc, char** argv, const description& d) {
                                            : std::string("expected ") + d.operands);
     const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
     if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator ||
-                                     o.sampler))
-        stop_parsing("--spp, --depth, --adaptive, --seed, --estimator and --sampler apply to XML scenes only with "
-                     "--integrator path, and --width never does (their files set the resolution)");
+                                     o.sampler || o.filter))
+        stop_parsing("--spp, --depth, --adaptive, --seed, --estimator, --sampler and --filter apply to XML scenes only "
+                     "with --integrator path, and --width never does (their files set the resolution)");
     if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");
     if (!xml && o.path_integrator) stop_parsing("--integrator applies to XML scenes only (text scenes are path traced)");
@@ -316,6 +326,7 @@ void options::apply(rt::camera& cam) const {
     if (estimator) cam.settings.estimator = *estimator;
     if (sampler) cam.settings.sampler = *sampler;
     if (caustic_paths) cam.settings.caustic_paths = *caustic_paths;
+    if (filter) cam.filter = *filter;
     cam.settings.quiet = quiet;
     // Ctrl-C during the render: the image so far (see the top).
     catch_interrupts();

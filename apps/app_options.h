@@ -14,6 +14,7 @@
 
 #include <rtweekend/camera.h>
 #include <rtweekend/image/image.h>
+#include <rtweekend/render/pixel_filter.h>
 #include <rtweekend/render/scheduler.h>
 #include <rtweekend/core/scene_error.h>
 
@@ -65,6 +66,7 @@ struct options {
     std::optional<rt::path_estimator> estimator; // --estimator nee|bsdf|mixture
     std::optional<rt::sampler_kind> sampler;     // --sampler independent|stratified|sobol
     std::optional<double> caustic_paths;         // --caustic-paths X
+    std::optional<rt::pixel_filter> filter;      // --filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C]
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
     // (rtweekend/io/slice_file.h) for `merge`.

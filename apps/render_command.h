@@ -163,20 +163,22 @@ inline rt::render_settings whitted_settings(const options& opt) {
 // samples per pixel, seed, sampler) and the scene's files: two slices merge only if this text is
 // the same. The camera's geometry comes from the scene file (in its fingerprint); the flags can
 // change only these.
-inline std::string slice_settings_text(const rt::render_settings& s) {
-    return "max_depth " + std::to_string(s.max_depth) + ", estimator " + rt::estimator_name(s.estimator);
+inline std::string slice_settings_text(const rt::render_settings& s, const rt::pixel_filter& filter) {
+    return "max_depth " + std::to_string(s.max_depth) + ", estimator " + rt::estimator_name(s.estimator) +
+           (filter.is_box() ? std::string() : ", filter " + filter.name()); // the box: as before filters
 }
 
 // The slice a render of a part of the sample range makes (settings.keep_sums must have been set).
 inline rt::sample_slice make_slice(const rt::render_settings& settings, const rt::render_result& r,
-                                   const std::string& scene_fingerprint) {
+                                   const std::string& scene_fingerprint,
+                                   const rt::pixel_filter& filter = rt::pixel_filter::box()) {
     rt::sample_slice slice;
     slice.render.width = r.sums.width;
     slice.render.height = r.sums.height;
     slice.render.samples_per_pixel = settings.samples_per_pixel;
     slice.render.seed = settings.seed;
     slice.render.sampler = rt::sampler_name(settings.sampler);
-    slice.render.settings = slice_settings_text(settings);
+    slice.render.settings = slice_settings_text(settings, filter);
     slice.render.scene = scene_fingerprint;
     slice.first_sample = settings.first_sample;
     slice.end_sample = settings.sample_end();
@@ -201,7 +203,7 @@ inline void write_slice_output(const options& o, const rt::render_settings& sett
         std::fflush(nullptr);
         std::exit(130);
     }
-    rt::write_slice(o.output, make_slice(settings, r, scene_fingerprint));
+    rt::write_slice(o.output, make_slice(settings, r, scene_fingerprint, o.filter.value_or(rt::pixel_filter::box())));
 }
 
 // Which cameras after `camera` (0-based) were not rendered: "" when none, else "; camera 3 not
@@ -248,7 +250,9 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     const size_t cameras = scene.cameras.size();
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);
-        rt::render_result r = rt::path_trace(compiled, rt::view_camera_frame(scene.cameras[i]), env, settings);
+        rt::camera_frame frame = rt::view_camera_frame(scene.cameras[i]);
+        if (opt.filter) frame.filter = *opt.filter;
+        rt::render_result r = rt::path_trace(compiled, frame, env, settings);
         const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
         if (r.stats.interrupted) {
             std::fprintf(stderr,

@@ -91,7 +91,7 @@ void render_text(MPI_Comm comm, const app::options& opt, int rank) {
         rt::mpi::path_trace(comm, scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights);
     rt::mpi::together(comm, [&] {
         if (rank != 0) return;
-        if (opt.samples) rt::write_slice(opt.output, app::make_slice(settings, r, fingerprint));
+        if (opt.samples) rt::write_slice(opt.output, app::make_slice(settings, r, fingerprint, opt.filter.value_or(rt::pixel_filter::box())));
         else app::write_output(opt, r.img);
     });
 }
@@ -119,7 +119,9 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
             return rt::compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene));
         });
         for (const rt::view_camera& c : scene.cameras) {
-            rt::render_result r = rt::mpi::path_trace(comm, compiled, rt::view_camera_frame(c), env, settings);
+            rt::camera_frame frame = rt::view_camera_frame(c);
+            if (opt.filter) frame.filter = *opt.filter;
+            rt::render_result r = rt::mpi::path_trace(comm, compiled, frame, env, settings);
             images.push_back(std::move(r.img));
         }
     } else {

@@ -87,6 +87,9 @@ class camera {
     double focus_dist = 10;   // Distance from camera lookfrom point to plane of perfect focus
 
     std::optional<color> background; // Unset: the book's sky gradient; set: this constant colour
+    // Beyond the book: the pixel reconstruction filter (render/pixel_filter.h): the book's box by
+    // default, or pixel_filter::tent(), gaussian(), mitchell(), each sampled, never splatted.
+    pixel_filter filter = pixel_filter::box();
 
     // Beyond the book: how the renderer samples (render/render_settings.h): seed (the same seed
     // gives the same image at any thread count), threads (0: one per processor this process may
@@ -187,6 +190,7 @@ RTWEEKEND_ENGINE_FUNCTION camera_frame camera::frame() const {
     f.position = lookfrom;
     f.width = image_width;
     f.height = height();
+    f.filter = filter;
 
     // Determine viewport dimensions.
     double theta = degrees_to_radians(vfov);
@@ -309,11 +313,12 @@ render_result render(const camera& cam, const hittable& world, RayColor ray_colo
         f.width, f.height, s,
         [&](int x, int y, int, pcg32& rng, uint64_t& rays) {
             // Every ray has a time, as in book 2: the shader's world may move.
-            ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng, /*with_time=*/true);
+            float weight = 1; // the camera's filter's (pixel_filter.h)
+            ray3f r = f.sample_ray(x, y, s.samples_per_pixel, rng, /*with_time=*/true, &weight);
             ++rays;
             detail::scoped_sample_rng guard(rng); // ray_color may call random_double()
             color c = ray_color(ray(f.position + r.origin.to_double(), r.dir.to_double(), r.time), world);
-            return vec3f(c);
+            return weight * vec3f(c);
         },
         start);
 }

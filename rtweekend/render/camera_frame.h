@@ -9,6 +9,7 @@
 #include "../vec3.h"
 #include "../core/force_inline.h"
 #include "../core/rng.h"
+#include "pixel_filter.h"
 #include "sampler.h"
 #include "../core/sampling.h"
 #include "../core/simd.h"
@@ -30,6 +31,9 @@ struct camera_frame {
     bool thin_lens = false;     // defocus_angle > 0: rays start on the lens disk
     vec3f eye{0, 0, 0};         // position relative to the scene origin (placed_in)
     bool eye_at_origin = true;  // eye is zero: nothing to add
+    // How a pixel weighs the image around its centre (pixel_filter.h): the books' box by default.
+    // Other filters draw each sample's offset from the filter and give it a weight (sample_rays).
+    pixel_filter filter = pixel_filter::box();
 
     // This frame looking at a scene compiled around `origin`: rays start at position - origin.
     // Throws scene_error when that is beyond float's range for the scene (1e18).
@@ -61,19 +65,26 @@ struct camera_frame {
     // uniform in the shutter interval [0, 1) (book 2's ray_time = random_double()). The time is
     // drawn last, and only when asked for: a scene where nothing depends on time draws the
     // random numbers it drew before motion blur existed.
-    ray3f sample_ray(int x, int y, int samples_per_pixel, pixel_sampler& ps, bool with_time = false) const {
+    // `weight`, when given, receives the sample's filter weight (see sample_rays).
+    ray3f sample_ray(int x, int y, int samples_per_pixel, pixel_sampler& ps, bool with_time = false,
+                     float* weight = nullptr) const {
         pixel_sampler* const one[1] = {&ps};
         ray3f r[sample_lanes::capacity];
-        sample_rays(1, &x, &y, one, samples_per_pixel, with_time, r);
+        float w[sample_lanes::capacity];
+        sample_rays(1, &x, &y, one, samples_per_pixel, with_time, r, w);
+        if (weight) *weight = w[0];
         return r[0];
     }
     // The same for n <= sample_lanes::capacity samples at once (the path tracer's batches): ray k
-    // for pixel (x[k], y[k]) from samplers[k]; `out` holds sample_lanes::capacity rays. Every step
+    // for pixel (x[k], y[k]) from samplers[k]; `out` holds sample_lanes::capacity rays. With a
+    // filter other than the box, `weights` (when not null) receives each sample's filter weight,
+    // by which its radiance is multiplied (1 for the box, and for a single sample through the
+    // pixel's centre). Every step
     // works on all the lanes together (floatv, and sample_lanes' loops), one instruction for up to
     // sixteen samples where the path tracer spent a tenth of the cover scene's time on them one
     // at a time.
     void sample_rays(int n, const int* x, const int* y, pixel_sampler* const* samplers, int samples_per_pixel,
-                     bool with_time, ray3f* out) const;
+                     bool with_time, ray3f* out, float* weights = nullptr) const;
     // The other way round, for paths that start at the lights (caustic_paths.h): where the camera
     // sees the point x from the lens point `lens` (both relative to the scene origin, as rays are;
     // the lens point is eye for a pinhole). Fills the unit direction from the lens to x, the distance,
@@ -115,28 +126,42 @@ struct camera_frame {
         const vec3f on_plane = lens + (h / cos_theta) * c.dir - pixel00;
         c.px = dot(on_plane, pixel_delta_u) / length_squared(pixel_delta_u) + 0.5f;
         c.py = dot(on_plane, pixel_delta_v) / length_squared(pixel_delta_v) + 0.5f;
-        if (!(c.px >= 0 && c.px < float(width) && c.py >= 0 && c.py < float(height))) return false;
+        // Inside the image, or (a filter wider than the pixel) within reach of its edge pixels.
+        const float margin = filter.is_box() ? 0.0f : float(filter.radius()) - 0.5f;
+        if (!(c.px >= -margin && c.px < float(width) + margin && c.py >= -margin && c.py < float(height) + margin))
+            return false;
         c.importance = h * h / (pixel_area * cos_theta * cos_theta * cos_theta * d2);
         return std::isfinite(c.importance);
     }
     // The same with every number from `rng`, in the order above.
-    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng, bool with_time = false) const {
+    ray3f sample_ray(int x, int y, int samples_per_pixel, pcg32& rng, bool with_time = false,
+                     float* weight = nullptr) const {
         const sampler_plan independent;
         pixel_sampler ps(independent, x, y, 0, rng);
-        return sample_ray(x, y, samples_per_pixel, ps, with_time);
+        return sample_ray(x, y, samples_per_pixel, ps, with_time, weight);
     }
 };
 
 inline void camera_frame::sample_rays(int n, const int* x, const int* y, pixel_sampler* const* samplers,
-                                      int samples_per_pixel, bool with_time, ray3f* out) const {
+                                      int samples_per_pixel, bool with_time, ray3f* out, float* weights) const {
     constexpr int lanes = sample_lanes::capacity;
     constexpr int W = int(floatv::width);
     static_assert(lanes % W == 0, "a batch is a whole number of SIMD registers");
     sample_lanes numbers(samplers, n);
     alignas(64) float px[lanes] = {}, py[lanes] = {}, lu[lanes] = {}, lv[lanes] = {}, dir[3][lanes], org[3][lanes];
     // The point in the pixel: uniform over it, or its centre for a single sample.
+    if (weights)
+        for (int k = 0; k < n; ++k) weights[k] = 1;
     if (samples_per_pixel > 1) {
         numbers.get2d(sample_dimension::camera_pixel, px, py);
+        if (!filter.is_box())
+            for (int k = 0; k < n; ++k) {
+                // The offset from the centre drawn from the filter, and the sample's weight.
+                float wx = 1, wy = 1;
+                px[k] = 0.5f + filter.sample(px[k], wx);
+                py[k] = 0.5f + filter.sample(py[k], wy);
+                if (weights) weights[k] = wx * wy;
+            }
     } else {
         for (int k = 0; k < lanes; ++k) px[k] = py[k] = 0.5f;
     }

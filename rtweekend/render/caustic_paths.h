@@ -141,6 +141,31 @@ inline bool may_meet(const box3f& b, const ray3f& r) {
 
 } // namespace detail
 
+// A light path's contribution at image point (c.px, c.py): to the pixel it lands in, with the
+// box filter; with another (camera_frame::filter), to every pixel whose filter reaches the point,
+// weighted f(dx) f(dy) / (integral f)^2, the pixel's share of the point as its camera samples
+// weigh theirs (pixel_filter.h).
+template <class Splat>
+void splat_filtered(const camera_frame& frame, const camera_frame::connection& c, const vec3f& value, uint32_t light,
+                    float density, Splat& splat) {
+    const pixel_filter& f = frame.filter;
+    if (f.is_box()) {
+        splat(int(c.px), int(c.py), value, light, density);
+        return;
+    }
+    const double r = f.radius(), norm = f.integral() * f.integral();
+    const int x0 = std::max(0, int(std::floor(c.px - r - 0.5))), x1 = std::min(frame.width - 1, int(std::floor(c.px + r - 0.5)) + 1);
+    const int y0 = std::max(0, int(std::floor(c.py - r - 0.5))), y1 = std::min(frame.height - 1, int(std::floor(c.py + r - 0.5)) + 1);
+    for (int y = y0; y <= y1; ++y) {
+        const double wy = f.eval(c.py - (y + 0.5));
+        if (wy == 0) continue;
+        for (int x = x0; x <= x1; ++x) {
+            const double w = wy * f.eval(c.px - (x + 0.5)) / norm;
+            if (w != 0) splat(x, y, float(w) * value, light, density);
+        }
+    }
+}
+
 // One light path (the numbers from rng): splat(x, y, value, light, camera_density) for each pixel
 // it adds to, with the index of the light it started from and the camera's density at the surface
 // point it was joined from (caustic_splats::camera_density); rays counts the rays traced.
@@ -417,7 +442,7 @@ void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, 
                     ++rays;
                     if (!detail::is_black(value) &&
                         !scene.occluded(detail::spawn_ray(seen, wo, c.distance * (1.0f - 1e-4f))))
-                        splat(int(c.px), int(c.py), value, chosen, density);
+                        splat_filtered(frame, c, value, chosen, density, splat);
                 }
             }
         }

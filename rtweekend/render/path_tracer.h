@@ -343,7 +343,14 @@ RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_s
         if (!b.workspace) b.workspace = std::make_shared<detail::batch_buffers>();
         detail::batch_buffers& buffers = *static_cast<detail::batch_buffers*>(b.workspace.get());
         ray3f* camera_rays = buffers.camera_rays;
-        frame.sample_rays(b.count, b.x, b.y, lanes, spp, with_time, camera_rays);
+        // A filter other than the box weighs each sample (camera_frame::filter, pixel_filter.h).
+        float filter_weight[sample_batch::capacity];
+        const bool weighted = !frame.filter.is_box();
+        frame.sample_rays(b.count, b.x, b.y, lanes, spp, with_time, camera_rays, weighted ? filter_weight : nullptr);
+        auto weigh = [&] {
+            if (weighted)
+                for (int k = 0; k < b.count; ++k) b.color[k] *= filter_weight[k];
+        };
         if (user_code) {
             // User-written shapes and materials may call random_double(): give them this sample's
             // generator so the image stays deterministic, and let each path draw in its own order,
@@ -353,6 +360,7 @@ RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_s
                 b.color[k] = detail::trace_path<false, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k],
                                                              settings.estimator);
             }
+            weigh();
             return;
         }
         // The paths side by side, a bounce of each in turn (camera_path), their rays traced
@@ -389,6 +397,7 @@ RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_s
             n = still;
         }
         for (int k = 0; k < b.count; ++k) b.color[k] = paths[k].radiance_so_far();
+        weigh();
     };
     if (caustics) {
         caustic_splats splats(scene, frame, max_depth, settings.seed,
