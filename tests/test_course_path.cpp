@@ -206,6 +206,21 @@ TEST_CASE("course path tracer: the reader's <Renderer> and <RendererParams>") {
     CHECK(load("<Renderer>DirectLighting</Renderer><RendererParams>RussianRoulette</RendererParams>").warnings.size() == 1);
     CHECK(error_of("<Renderer>PathTracing</Renderer><RendererParams>NEE</RendererParams>").find("'NEE' is not one of") !=
           std::string::npos);
+    // A plain material of kd 0.5 has the level-1 model's albedo pi kd = 1.57 in the course's path
+    // tracer: under roulette its paths never end on their own. One warning; none without roulette,
+    // and none for kd 0.3 (0.94).
+    auto with_kd = [&](const std::string& kd, const std::string& params) {
+        return load_xml_scene(dir.write("kd.xml", "<Scene>" + camera("0 0 5", "0 -1 -1", 1, "<Renderer>PathTracing</Renderer><RendererParams>" + params +
+                                                                         "</RendererParams>") +
+                                                      "<VertexData>0 0 0</VertexData><Materials><Material id=\"1\"><DiffuseReflectance>" + kd +
+                                                      "</DiffuseReflectance></Material></Materials><Objects><Sphere id=\"1\"><Material>1</Material>"
+                                                      "<Center>1</Center><Radius>1</Radius></Sphere></Objects></Scene>"));
+    };
+    const whitted_scene runaway = with_kd("0.5 0.2 0.2", "RussianRoulette");
+    REQUIRE(runaway.warnings.size() == 1);
+    CHECK(runaway.warnings[0].find("<Material id=\"1\">: reflects 1.57 times the light it receives") != std::string::npos);
+    CHECK(with_kd("0.5 0.2 0.2", "NextEventEstimation").warnings.empty());
+    CHECK(with_kd("0.3 0.3 0.3", "RussianRoulette").warnings.empty());
 }
 
 TEST_CASE("course path tracer: our path tracer sees the same direct light, and 1/pi of each diffuse bounce") {

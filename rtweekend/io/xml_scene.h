@@ -102,6 +102,7 @@
 #include "../course/whitted_scene.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <array>
 #include <cctype>
 #include <charconv>
@@ -154,6 +155,7 @@ RTWEEKEND_ENGINE_FUNCTION void set_smooth_normals(triangle_mesh& mesh);
 #include "../core/input_limits.h"
 #include "ply.h"
 #include "../image/image_read.h"
+#include "../render/render_settings.h"
 #include "../core/text_lines.h"
 #include <pugixml.hpp>
 #include <cstring>
@@ -250,6 +252,7 @@ class xml_scene_reader {
         read_objects(root, scene);
         scene.files.insert(scene.files.end(), ply_files_.begin(), ply_files_.end());
         if (scene.cameras.empty()) fail(root, "<Scene>", "no camera: a scene needs a <Camera> inside <Cameras>");
+        warn_runaway_roulette(scene);
         scene.warnings = notes_;
         warn_unread(root, scene.warnings);
         return scene;
@@ -1019,6 +1022,31 @@ class xml_scene_reader {
                     images_[id] = i;
                 }
             }
+        }
+    }
+
+    // A path-traced camera with RussianRoulette keeps a path going while its throughput is 1 or
+    // more (the course's rule, section 11): on a plain material that reflects more than it
+    // receives, as the level-1 model's f = kd does for kd above 1/pi (albedo pi kd), no path ends
+    // before the renderer's cap (whitted_settings::max_branch_rays). Said once per such material.
+    void warn_runaway_roulette(const whitted_scene& scene) {
+        bool roulette = false;
+        for (const view_camera& c : scene.cameras) roulette = roulette || (c.path_tracing.on && c.path_tracing.russian_roulette);
+        if (!roulette) return;
+        for (const auto& [id, m] : materials_) {
+            if (m->kind != whitted_material::kind_t::plain || m->effective_kind() != whitted_material::kind_t::plain) continue;
+            const double kd = std::max({m->diffuse.x(), m->diffuse.y(), m->diffuse.z()});
+            const bool per_pi = m->brdf && (m->brdf->normalized || m->brdf->model == course_brdf_bsdf::model_t::torrance_sparrow);
+            const double albedo = per_pi ? kd : pi * kd;
+            if (!(albedo > 1)) continue;
+            char text[48];
+            std::snprintf(text, sizeof text, "%.3g", albedo);
+            notes_.push_back(one_line(path_ + (json_ ? std::string() : ":" + std::to_string(material_lines_[id])) +
+                                      ": <Material id=\"" + std::to_string(id) + "\">: reflects " + text +
+                                      " times the light it receives in the course's path tracer (" +
+                                      (per_pi ? "its BRDF's diffuse albedo kd" : "f = kd, albedo pi kd") +
+                                      "): under RussianRoulette its paths do not end and are cut at " +
+                                      std::to_string(whitted_settings{}.max_branch_rays) + " rays"));
         }
     }
 
