@@ -178,6 +178,16 @@ TEST_CASE("course textures: decal modes on a mesh with texture coordinates, plac
                               "<Transformations><Translation id=\"1\">0 0 -5</Translation><Scaling id=\"2\">-1 1 1</Scaling></Transformations>" +
                               textures(map(1, "image", "replace_kd")) + moved);
     CHECK(c.x() == doctest::Approx(red(0, 0)).epsilon(1e-5));
+    // An instance without <Textures> of a textured Mesh is drawn with its base's maps, as it keeps
+    // its base's material.
+    const std::string inherited = "<Objects><Mesh id=\"1\"><Material>1</Material><Textures>1</Textures>"
+                                  "<Transformations>t1</Transformations><Faces>1 2 3 1 3 4</Faces></Mesh>"
+                                  "<MeshInstance id=\"2\" baseMeshId=\"1\" resetTransform=\"true\">"
+                                  "<Transformations>s2</Transformations></MeshInstance></Objects>";
+    c = render_pixel(dir, camera("0.6 0.5 2", "0 0 -1") + light_at("0.6 0.5 2", 1020) + square_vertices + material("0 0 0") +
+                              "<Transformations><Translation id=\"1\">0 0 -5</Translation><Scaling id=\"2\">-1 1 1</Scaling></Transformations>" +
+                              textures(map(1, "image", "replace_kd")) + inherited);
+    CHECK(c.x() == doctest::Approx(red(0, 0)).epsilon(1e-5));
 }
 
 TEST_CASE("course textures: a checkerboard in object space with C truncation") {

@@ -1309,7 +1309,9 @@ class xml_scene_reader {
                     mark(o);
                     std::set<const void*> visiting;
                     const placed_mesh p = resolve_instance(o, visiting);
-                    auto mapped = textured(o, owner, p.material, textured_object::shape_t::mesh, p.matrix, scene);
+                    auto mapped = p.textures ? textured(p.textures, element_name(p.textures), p.material,
+                                                        textured_object::shape_t::mesh, p.matrix, scene)
+                                             : nullptr;
                     scene.world.add(blurred(o, owner, place(with_material(p.geometry, mapped ? mapped : p.material), p.matrix)));
                 } else if (name == "Sphere") {
                     mark(o);
@@ -1375,6 +1377,9 @@ class xml_scene_reader {
         std::shared_ptr<triangle_mesh> geometry;
         affine_map matrix;
         std::shared_ptr<whitted_material> material;
+        // The element whose <Textures> list it is drawn with: its own, else its base's (an
+        // instance copies its base, maps included, as it keeps its material); none without.
+        node textures;
     };
 
     // A <Mesh>: read once, however many instances name it.
@@ -1386,6 +1391,7 @@ class xml_scene_reader {
         p.geometry = read_mesh(o, owner, remap_);
         p.material = std::static_pointer_cast<whitted_material>(p.geometry->mat);
         p.matrix = object_transform(o, owner);
+        if (child(o, "Textures", false)) p.textures = o;
         return resolved_.emplace(o.internal_object(), std::move(p)).first->second;
     }
 
@@ -1433,6 +1439,7 @@ class xml_scene_reader {
         p.matrix = reset ? own : own.then(base.matrix);
         check_invertible(p.matrix, o, owner);
         p.material = child(o, "Material", false) ? material_of(o, owner) : base.material;
+        p.textures = child(o, "Textures", false) ? o : base.textures;
         return resolved_.emplace(o.internal_object(), std::move(p)).first->second;
     }
 
