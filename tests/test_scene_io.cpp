@@ -160,6 +160,7 @@ TEST_CASE("parse_scene: comments, blank lines, inline comments and CRLF are igno
                                 "camera image_width 64\r\n"
                                 "camera seed 17\n"
                                 "camera sampler stratified\n"
+                                "camera filter gaussian:0.4\n"
                                 "camera estimator mixture\n"
                                 "camera background 0.1 0.2 0.3\n");
     REQUIRE(s.world.objects.size() == 1);
@@ -168,6 +169,8 @@ TEST_CASE("parse_scene: comments, blank lines, inline comments and CRLF are igno
     CHECK(s.cam.image_width == 64);
     CHECK(s.cam.settings.seed == 17);
     CHECK(s.cam.settings.sampler == sampler_kind::stratified);
+    CHECK(s.cam.filter.name() == "gaussian:0.4");
+    CHECK(s.cam.filter.radius() == doctest::Approx(1.2)); // 3 sigma
     CHECK(s.cam.settings.estimator == path_estimator::mixture);
     REQUIRE(s.cam.background.has_value());
     CHECK(s.cam.background->y() == 0.2);
@@ -281,6 +284,7 @@ TEST_CASE("parse_scene: every malformed line is 'name:LINE: problem'") {
     check_fails("camera seed -1\n", 1, {"seed", "out of range"});
     check_fails("camera background 0.1 -0.2 0.3\n", 1, {"background", "non-negative"});
     check_fails("camera sampler halton\n", 1, {"sampler", "'halton'"});
+    check_fails("camera filter lanczos\n", 1, {"unknown filter 'lanczos'"});
     check_fails("camera estimator\n", 1, {"camera estimator"});
 
     // The error names the right line when it comes after valid content.

@@ -10,7 +10,8 @@
 //                                image_width n | image_height n | samples_per_pixel n |
 //                                max_depth n | background r g b | seed n |
 //                                adaptive_error e | adaptive_min_samples n |
-//                                estimator nee|bsdf|mixture | sampler sobol|stratified|independent
+//                                estimator nee|bsdf|mixture | sampler sobol|stratified|independent |
+//                                filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C] (pixel_filter.h)
 //   background r g b             the same as camera background r g b
 //   texture NAME solid r g b     a named texture, used where a colour may vary as @NAME:
 //   texture NAME checker S <c> <c>      book 2's 3-D checker of cell size S; <c> is r g b or @NAME
@@ -59,6 +60,7 @@
 
 #include "../core/engine_linkage.h"
 #include "../camera.h"
+#include "../render/pixel_filter.h"
 #include "../hittable_list.h"
 #include "../point_light.h"
 #include "../core/scene_error.h"
@@ -216,6 +218,13 @@ inline void parse_camera_line(const scene_line& line, camera& cam) {
         line.expect_count(3, "camera sampler sobol|stratified|independent");
         if (!parse_sampler(line.word(2), cam.settings.sampler))
             line.fail("sampler must be sobol, stratified or independent, got '" + line.word(2) + "'");
+    } else if (key == "filter") {
+        line.expect_count(3, "camera filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C]");
+        try {
+            cam.filter = parse_pixel_filter(line.word(2));
+        } catch (const scene_error& e) {
+            line.fail(e.what());
+        }
     } else if (key == "background") {
         color bg = three("background");
         if (bg.x() < 0 || bg.y() < 0 || bg.z() < 0) line.fail("background must be non-negative");
