@@ -1112,24 +1112,12 @@ class xml_scene_reader {
                     const bool encoded = image_encoded_[integer(ref, owner)];
                     map.normalizer = encoded ? 255.0f : 1.0f; // 8-bit codes, or radiance as it is
                     if (node n = child(t, "Normalizer", false)) map.normalizer = float(bounded(n, owner, 0, true));
-                    if (node n = child(t, "Interpolation", false)) {
-                        const std::string i = lower(trim(text(n, owner)));
-                        if (i == "bilinear") map.bilinear = true;
-                        else if (i != "nearest")
-                            fail(n, owner, "unknown <Interpolation> '" + token_text(trim(text(n, owner))) +
-                                               "' (expected nearest or bilinear)");
-                    }
+                    if (node n = child(t, "Interpolation", false)) map.bilinear = either(n, owner, "nearest", "bilinear");
                 }
                 if (node n = child(t, "BumpFactor", false)) map.bump_factor = float(finite(n, owner));
                 if (map.pattern == pattern::perlin) {
                     if (node n = child(t, "NoiseScale", false)) map.noise_scale = float(finite(n, owner));
-                    if (node n = child(t, "NoiseConversion", false)) {
-                        const std::string c = lower(trim(text(n, owner)));
-                        if (c == "absval") map.absval = true;
-                        else if (c != "linear")
-                            fail(n, owner, "unknown <NoiseConversion> '" + token_text(trim(text(n, owner))) +
-                                               "' (expected linear or absval)");
-                    }
+                    if (node n = child(t, "NoiseConversion", false)) map.absval = either(n, owner, "linear", "absval");
                 }
                 if (map.pattern == pattern::checkerboard) {
                     if (node n = child(t, "Scale", false)) map.scale = finite(n, owner);
@@ -1144,6 +1132,15 @@ class xml_scene_reader {
                 }
                 texture_maps_[id] = std::move(map);
             }
+    }
+    // An element whose text is one of two words (case aside): false for `first`, true for `second`.
+    bool either(node el, const std::string& owner, const char* first, const char* second) const {
+        const std::string w = lower(trim(text(el, owner)));
+        if (w == second) return true;
+        if (w != first)
+            fail(el, owner, "unknown " + tag(el) + " '" + token_text(trim(text(el, owner))) + "' (expected " + first +
+                                " or " + second + ")");
+        return false;
     }
     // A number that must be finite (any sign).
     double finite(node el, const std::string& owner) const {
