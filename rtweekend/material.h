@@ -293,6 +293,130 @@ class conductor : public material {
     color n_, k_, tint_;
 };
 
+// Rough materials: GGX microfacets (core/microfacet.h). A roughness is in [0, 1]: 0 is smooth (a
+// mirror, clear glass), 1 is as rough as GGX goes; the microfacet slope alpha is roughness^2, as in
+// glTF and Disney's model. Two roughnesses give an anisotropic surface: roughness_u along the
+// direction around the world's y axis, roughness_v across it (a turned or brushed finish).
+
+// A rough metal (core/materials/rough_conductor_bsdf.h). With an albedo: the reflectance at
+// normal incidence, whitening towards grazing by Schlick's approximation (the form glTF's metals
+// and most asset libraries give). With a complex index n + ik per channel: the exact Fresnel
+// reflectance, as conductor. The light single scattering between microfacets loses is returned
+// (Kulla and Conty 2017), so a white rough conductor reflects everything at every roughness.
+class rough_conductor : public material {
+  public:
+    rough_conductor(const color& albedo, double roughness) : rough_conductor(albedo, roughness, roughness) {}
+    rough_conductor(const color& albedo, double roughness_u, double roughness_v)
+        : albedo_(albedo), roughness_u_(roughness_u), roughness_v_(roughness_v), data_(make_data(false)) {}
+    rough_conductor(const color& n, const color& k, double roughness) : rough_conductor(n, k, roughness, roughness) {}
+    rough_conductor(const color& n, const color& k, double roughness_u, double roughness_v)
+        : n_(n), k_(k), roughness_u_(roughness_u), roughness_v_(roughness_v), data_(make_data(true)) {}
+
+    using material::scatter;
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    compiled_material compiled() const {
+        rough_conductor_bsdf b;
+        b.distribution = distribution();
+        b.f0 = vec3f(albedo_);
+        b.data = data_.get();
+        return compiled_material::of(b, this);
+    }
+
+    bool complex_index() const { return data_->complex_index; }
+    const color& albedo() const { return albedo_; }
+    const color& n() const { return n_; }
+    const color& k() const { return k_; }
+    double roughness_u() const { return roughness_u_; }
+    double roughness_v() const { return roughness_v_; }
+
+  private:
+    color albedo_{1, 1, 1}, n_{1, 1, 1}, k_{0, 0, 0};
+    double roughness_u_, roughness_v_;
+    // Worked out once, when the material is made: the mean Fresnel reflectance of a complex
+    // index (256 evaluations per channel) and an anisotropic surface's albedo table (some 20 ms;
+    // not for roughnesses outside [0, 1], which compile_material refuses).
+    std::shared_ptr<const rough_conductor_data> data_;
+
+    ggx distribution() const { return {alpha_of_roughness(float(roughness_u_)), alpha_of_roughness(float(roughness_v_))}; }
+    std::shared_ptr<const rough_conductor_data> make_data(bool complex_index) const {
+        auto d = std::make_shared<rough_conductor_data>();
+        d->complex_index = complex_index;
+        if (complex_index) {
+            d->eta = vec3f(n_);
+            d->k = vec3f(k_);
+            d->fresnel_average = conductor_fresnel_average(d->eta, d->k);
+        }
+        const ggx g = distribution();
+        const bool in_range = roughness_u_ >= 0 && roughness_u_ <= 1 && roughness_v_ >= 0 && roughness_v_ <= 1;
+        if (in_range && !g.isotropic() && !g.smooth()) d->anisotropic.emplace(g);
+        return d;
+    }
+};
+
+// Rough glass of refractive index `refraction_index` (core/materials/rough_dielectric_bsdf.h):
+// frosted, etched or ground glass; it reflects and refracts through GGX microfacets with the
+// exact Fresnel reflectance. At roughness 0 it is dielectric(refraction_index, color(0, 0, 0)).
+class rough_dielectric : public material {
+  public:
+    rough_dielectric(double refraction_index, double roughness)
+        : rough_dielectric(refraction_index, roughness, roughness) {}
+    rough_dielectric(double refraction_index, double roughness_u, double roughness_v)
+        : refraction_index_(refraction_index), roughness_u_(roughness_u), roughness_v_(roughness_v) {}
+
+    using material::scatter;
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    compiled_material compiled() const {
+        rough_dielectric_bsdf b;
+        b.refraction_index = static_cast<float>(refraction_index_);
+        b.distribution = {alpha_of_roughness(float(roughness_u_)), alpha_of_roughness(float(roughness_v_))};
+        return compiled_material::of(b, this);
+    }
+
+    double refraction_index() const { return refraction_index_; }
+    double roughness_u() const { return roughness_u_; }
+    double roughness_v() const { return roughness_v_; }
+
+  private:
+    double refraction_index_, roughness_u_, roughness_v_;
+};
+
+// glTF 2.0's metallic-roughness material (core/materials/metal_rough_bsdf.h): metallic 1 is a
+// rough metal of colour base_colour, metallic 0 a diffuse base of that colour under a clear coat
+// of index 1.5; values between blend the two.
+class metal_roughness : public material {
+  public:
+    metal_roughness(const color& base_colour, double metallic, double roughness)
+        : base_colour_(base_colour), metallic_(metallic), roughness_(roughness) {}
+
+    using material::scatter;
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+    }
+
+    compiled_material compiled() const {
+        metal_rough_bsdf b;
+        b.base_colour = vec3f(base_colour_);
+        b.metallic = static_cast<float>(metallic_);
+        const float alpha = alpha_of_roughness(float(roughness_));
+        b.distribution = {alpha, alpha};
+        return compiled_material::of(b, this);
+    }
+
+    const color& base_colour() const { return base_colour_; }
+    double metallic() const { return metallic_; }
+    double roughness() const { return roughness_; }
+
+  private:
+    color base_colour_;
+    double metallic_, roughness_;
+};
+
 // An emitter (books 2 and 3). Book 3's light emits from its front face only (the side its
 // shape's normal points to: a quad's cross(u, v)); book 2's from both, which two_sided = true
 // keeps. It scatters nothing (material's scatter() defaults).
@@ -444,5 +568,8 @@ using rt::lambertian;
 using rt::material;
 using rt::metal;
 using rt::plastic;
+using rt::metal_roughness;
+using rt::rough_conductor;
+using rt::rough_dielectric;
 using rt::scatter_record;
 #endif

@@ -158,6 +158,26 @@ compiled_material example(kind_tag<course_brdf_bsdf>) {
     return compiled_material::of(b);
 }
 compiled_material example(kind_tag<user_bsdf>) { return compiled_material::of(user_bsdf{}); }
+compiled_material example(kind_tag<rough_conductor_bsdf>) {
+    rough_conductor_bsdf b;
+    b.distribution = {0.3f, 0.1f};
+    b.f0 = {0.9f, 0.7f, 0.4f};
+    static const rough_conductor_data data{false, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, ggx_anisotropic_albedo(b.distribution)};
+    b.data = &data; // outlives every record made here
+    return compiled_material::of(b);
+}
+compiled_material example(kind_tag<rough_dielectric_bsdf>) {
+    rough_dielectric_bsdf b;
+    b.refraction_index = 1.5f;
+    b.distribution = {0.2f, 0.2f};
+    return compiled_material::of(b);
+}
+compiled_material example(kind_tag<metal_rough_bsdf>) {
+    metal_rough_bsdf b;
+    b.base_colour = {0.6f, 0.3f, 0.2f};
+    b.metallic = 0.5f;
+    return compiled_material::of(b);
+}
 
 template <class K>
 void check_material_kind() {

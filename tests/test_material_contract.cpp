@@ -93,6 +93,9 @@ std::vector<named_material> all_materials() {
         make("course modified Blinn-Phong, normalised, 5", course_brdf(course_brdf_bsdf::model_t::modified_blinn_phong, true, 5)),
         make("course Torrance-Sparrow 20, kdfresnel", course_brdf(course_brdf_bsdf::model_t::torrance_sparrow, true, 20)),
         make("blinn_phong 2, glossy only", std::make_shared<blinn_phong>(color(0, 0, 0), color(0.9, 0.8, 0.7), 2)),
+        // GGX (rough glass, which also refracts, is checked over the whole sphere in test_microfacet.cpp).
+        make("rough_conductor 0.6", std::make_shared<rough_conductor>(color(0.9, 0.7, 0.4), 0.6)),
+        make("metal_roughness 0.5 0.5", std::make_shared<metal_roughness>(color(0.7, 0.4, 0.2), 0.5, 0.5)),
     };
 }
 

@@ -76,6 +76,8 @@ struct material_properties {
     bool has_density = false;      // some lobe has a density (diffuse or glossy): light sampling reaches it
     bool refracts = false;         // light crosses into it (glass: its inside is another medium)
     bool transmits = false;        // light can pass through the surface: its back face is never culled
+    bool density_crosses = false;  // a lobe with a density reaches the far side (rough glass): smooth
+                                   // shading's fold, which keeps lobes on the near side, must not apply
     bool phase_function = false;   // it scatters to the whole sphere at a point inside a volume: eval
                                    // has no cosine, and light may arrive from any side
     bool absorbs_inside = false;   // light travelling inside loses energy with distance (Beer)

@@ -26,7 +26,10 @@
 #include "materials/isotropic_phase.h"
 #include "materials/lambertian_bsdf.h"
 #include "materials/metal_bsdf.h"
+#include "materials/metal_rough_bsdf.h"
 #include "materials/plastic_bsdf.h"
+#include "materials/rough_conductor_bsdf.h"
+#include "materials/rough_dielectric_bsdf.h"
 #include "materials/user_bsdf.h"
 #include "rng.h"
 #include "sampling.h"
@@ -41,7 +44,7 @@ class material;
 
 using material_kinds = kind_list<lambertian_bsdf, metal_bsdf, dielectric_bsdf, fresnel_glass_bsdf, conductor_bsdf,
                                  emitter_bsdf, isotropic_phase, plastic_bsdf, blinn_phong_bsdf, course_brdf_bsdf,
-                                 user_bsdf>;
+                                 user_bsdf, rough_conductor_bsdf, rough_dielectric_bsdf, metal_rough_bsdf>;
 
 // compiled_material::texture when the material has no texture.
 inline constexpr uint32_t no_texture = UINT32_MAX;
@@ -104,6 +107,7 @@ class compiled_material {
     bool has_non_delta_lobe() const { return props_.has_density; }
     bool refracts() const { return props_.refracts; }
     bool transmits() const { return props_.transmits; }
+    bool density_crosses() const { return props_.density_crosses; }
     bool is_phase_function() const { return props_.phase_function; }
     bool absorbs_inside() const { return props_.absorbs_inside; }
     bool lambertian_only() const { return props_.lambertian_only; }

@@ -46,6 +46,9 @@
 //                                Fresnel and Beer's law, dielectric(ior, absorption)
 //   conductor r g b n k          tint and complex index n + ik: conductor(n, k, tint)
 //   plastic r g b 0 ior          a diffuse base of albedo r g b under a clear coat of index ior
+//   rough_conductor r g b rough 0    a rough metal (GGX) of albedo r g b, roughness in [0, 1]
+//   rough_dielectric 0 0 0 rough ior rough glass of index ior (r g b unused)
+//   metal_roughness r g b metal rough  glTF's metallic-roughness: base colour, metallic, roughness
 //   isotropic r g b 0 0          the phase function of fog (for media); r g b may be @NAME
 //   diffuse_light r g b 0 0      an emitter of radiance (r, g, b) from its front face (book 3);
 //                                r g b may be @NAME
@@ -350,6 +353,24 @@ inline std::shared_ptr<material> scene_parser::material_at(const scene_line& lin
         if (!(exponent >= 0)) line.fail("blinn_phong exponent must be non-negative");
         return std::make_shared<blinn_phong>(kd, ks, exponent);
     }
+    if (kind == "rough_conductor" || kind == "rough_dielectric" || kind == "metal_roughness") {
+        const bool blend = kind == "metal_roughness";
+        color c = plain_colour(line, i, blend ? "base colour" : "albedo");
+        const size_t first_at = i;
+        const double first = number(blend ? "metallic" : "roughness");
+        const double second = number(blend ? "roughness" : "ior");
+        auto in_unit = [&](double v, size_t at, const char* what) {
+            if (!(v >= 0 && v <= 1)) line.fail(kind + " " + what + " must be in [0, 1], got " + line.word(at));
+        };
+        in_unit(first, first_at, blend ? "metallic" : "roughness");
+        if (blend) {
+            in_unit(second, first_at + 1, "roughness");
+            return std::make_shared<metal_roughness>(c, first, second);
+        }
+        if (kind == "rough_conductor") return std::make_shared<rough_conductor>(c, first);
+        if (!(second > 0)) line.fail("rough_dielectric ior must be positive, got " + line.word(first_at + 1));
+        return std::make_shared<rough_dielectric>(second, first);
+    }
     const bool is_conductor = kind == "conductor", is_glass = kind == "glass";
     const char* rgb_name = is_conductor ? "conductor tint" : is_glass ? "glass absorption" : "albedo";
     color albedo = plain_colour(line, i, rgb_name);
@@ -378,8 +399,8 @@ inline std::shared_ptr<material> scene_parser::material_at(const scene_line& lin
         return std::make_shared<plastic>(albedo, ior);
     }
     line.fail("unknown material '" + kind +
-              "' (expected lambertian, metal, dielectric, glass, conductor, plastic, blinn_phong, isotropic, "
-              "diffuse_light or two_sided_light)");
+              "' (expected lambertian, metal, dielectric, glass, conductor, plastic, blinn_phong, rough_conductor, "
+              "rough_dielectric, metal_roughness, isotropic, diffuse_light or two_sided_light)");
 }
 
 // The transforms from field i (rotate_y degrees | translate x y z | rotate ax ay az degrees |

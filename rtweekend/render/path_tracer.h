@@ -193,7 +193,7 @@ void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit&
     }
     const bool smooth = hit.smooth_shaded();
     const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
-                                            smooth && !m.is_phase_function()};
+                                            smooth && !m.is_phase_function() && !m.density_crosses()};
     const bool has_density = vm.has_density();
     // A constant_medium's scattering point (a user shape's hit with the isotropic phase
     // function) is inside the fog, not on a surface: its rays start at the point itself.

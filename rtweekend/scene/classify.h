@@ -36,7 +36,7 @@ using book_hittables = kind_list<hittable_list, bvh_node, translate, rotate_y, t
 // The materials the material compiler compiles into material kinds (material_compiler.h); anything
 // else is a user material, rendered through its virtual scatter().
 using book_materials = kind_list<lambertian, metal, dielectric, conductor, diffuse_light, isotropic, plastic, blinn_phong,
-                                 whitted_material>;
+                                 whitted_material, rough_conductor, rough_dielectric, metal_roughness>;
 
 // The textures the texture table compiles into texture kinds (texture_table.h); anything else is a
 // user texture, whose value() is asked per hit.

@@ -120,6 +120,35 @@ inline compiled_material compile_book(const blinn_phong& b, texture_table*) {
         throw scene_error("blinn_phong exponent must be finite and non-negative, got " + number_text(b.exponent()));
     return b.compiled();
 }
+inline void check_roughness(double r, const char* what) {
+    if (!(r >= 0 && r <= 1)) throw scene_error(std::string(what) + " must be in [0, 1], got " + number_text(r));
+}
+inline compiled_material compile_book(const rough_conductor& c, texture_table*) {
+    if (c.complex_index()) {
+        check_color(c.n(), "rough_conductor n");
+        check_color(c.k(), "rough_conductor k");
+        if (!(c.n().x() > 0 && c.n().y() > 0 && c.n().z() > 0))
+            throw scene_error("rough_conductor n must be positive, got " + point_text(c.n()));
+    } else {
+        check_color(c.albedo(), "rough_conductor albedo");
+    }
+    check_roughness(c.roughness_u(), "rough_conductor roughness");
+    check_roughness(c.roughness_v(), "rough_conductor roughness");
+    return c.compiled();
+}
+inline compiled_material compile_book(const rough_dielectric& g, texture_table*) {
+    check_refraction_index(g.refraction_index(), "rough_dielectric refraction index");
+    check_roughness(g.roughness_u(), "rough_dielectric roughness");
+    check_roughness(g.roughness_v(), "rough_dielectric roughness");
+    return g.compiled();
+}
+inline compiled_material compile_book(const metal_roughness& m, texture_table*) {
+    check_color(m.base_colour(), "metal_roughness base colour");
+    if (!(m.metallic() >= 0 && m.metallic() <= 1))
+        throw scene_error("metal_roughness metallic must be in [0, 1], got " + number_text(m.metallic()));
+    check_roughness(m.roughness(), "metal_roughness roughness");
+    return m.compiled();
+}
 inline compiled_material compile_book(const whitted_material& w, texture_table*) {
     check_whitted_material(w);
     return w.compiled();

@@ -290,6 +290,7 @@ class scene_compiler {
             } else {
                 d.edit<dielectric_bsdf>([](dielectric_bsdf& g) { g.refraction_index = 1.0f / g.refraction_index; });
                 d.edit<fresnel_glass_bsdf>([](fresnel_glass_bsdf& g) { g.refraction_index = 1.0f / g.refraction_index; });
+                d.edit<rough_dielectric_bsdf>([](rough_dielectric_bsdf& g) { g.refraction_index = 1.0f / g.refraction_index; });
                 index = static_cast<uint32_t>(out_.materials.size());
                 out_.materials.push_back(d);
             }
