@@ -66,7 +66,7 @@ void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
                  "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent] [--caustic-paths X]\n"
-                 "          [--filter F] [-o FILE] [--quiet]\n"
+                 "          [--filter F] [--look-from X,Y,Z] [--look-at X,Y,Z] [--fov DEG] [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
@@ -88,6 +88,9 @@ void print_usage(const description& d, std::FILE* to) {
                  "  --filter F   the pixel filter: box (the books'; default), tent[:R] (radius R, 1),\n"
                  "               gaussian[:SIGMA] (0.5; radius 3 sigma) or mitchell[:B,C] (1/3,1/3; radius\n"
                  "               2), each sampled by importance, so pixels stay independent\n"
+                 "  --look-from X,Y,Z, --look-at X,Y,Z, --fov DEG  the camera's position, the point it looks at,\n"
+                 "               and its vertical field of view in degrees, over the scene's (a model's default\n"
+                 "               view: docs/models.md)\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp, or linear .pfm or .exr); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -211,6 +214,20 @@ options parse_arguments(int argc, char** argv, const description& d) {
             if (!rt::parse_sampler(v, k))
                 stop_parsing("--sampler needs sobol, stratified or independent, got '" + v + "'");
             o.sampler = k;
+        } else if (arg == "--look-from" || arg == "--look-at") {
+            // Three numbers, comma-separated: X,Y,Z.
+            const std::string v = next();
+            double xyz[3];
+            size_t start = 0;
+            for (int k = 0; k < 3; ++k) {
+                const size_t comma = k < 2 ? v.find(',', start) : v.size();
+                if (comma == std::string::npos) stop_parsing(arg + " needs X,Y,Z, got '" + rt::token_text(v) + "'");
+                xyz[k] = detail::real_value(arg, v.substr(start, comma - start), -1e30, 1e30);
+                start = comma + 1;
+            }
+            (arg == "--look-from" ? o.look_from : o.look_at) = rt::point3(xyz[0], xyz[1], xyz[2]);
+        } else if (arg == "--fov") {
+            o.fov = detail::real_value(arg, next(), 1e-3, 179);
         } else if (arg == "--integrator" && d.xml_scenes) {
             std::string v = next();
             if (v != "path" && v != "whitted") stop_parsing("--integrator needs path or whitted, got '" + v + "'");
@@ -246,6 +263,8 @@ options parse_arguments(int argc, char** argv, const description& d) {
         stop_parsing("--spp, --depth, --adaptive, --seed, --estimator, --sampler and --filter apply to XML scenes only "
                      "with --integrator path, and --width never does (their files set the resolution)");
     if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
+    if (xml && (o.look_from || o.look_at || o.fov))
+        stop_parsing("--look-from, --look-at and --fov apply to text scenes and models (XML cameras are the file's)");
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");
     if (!xml && o.path_integrator) stop_parsing("--integrator applies to XML scenes only (text scenes are path traced)");
     if (!xml && o.cull_back_faces) stop_parsing("--bfc applies to XML scenes only");
@@ -327,6 +346,9 @@ void options::apply(rt::camera& cam) const {
     if (sampler) cam.settings.sampler = *sampler;
     if (caustic_paths) cam.settings.caustic_paths = *caustic_paths;
     if (filter) cam.filter = *filter;
+    if (look_from) cam.lookfrom = *look_from;
+    if (look_at) cam.lookat = *look_at;
+    if (fov) cam.vfov = *fov;
     cam.settings.quiet = quiet;
     // Ctrl-C during the render: the image so far (see the top).
     catch_interrupts();

@@ -67,6 +67,8 @@ struct options {
     std::optional<rt::sampler_kind> sampler;     // --sampler independent|stratified|sobol
     std::optional<double> caustic_paths;         // --caustic-paths X
     std::optional<rt::pixel_filter> filter;      // --filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C]
+    std::optional<rt::point3> look_from, look_at; // --look-from X,Y,Z, --look-at X,Y,Z (text scenes, models)
+    std::optional<double> fov;                    // --fov DEGREES: the vertical field of view
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
     // (rtweekend/io/slice_file.h) for `merge`.

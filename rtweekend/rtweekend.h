@@ -42,6 +42,7 @@
 #include "core/file.h"
 #include "image/image_write.h"
 #include "io/obj.h"
+#include "io/obj_model.h"
 #include "io/ply.h"
 #include "io/scene_file.h"
 

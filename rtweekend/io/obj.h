@@ -7,7 +7,7 @@
 // OBJ files are read with tinyobjloader (Debian's libtinyobjloader-dev), which the rtweekend CMake
 // target links. Polygons are split into triangle fans. Positions, normals and texture
 // coordinates are kept; materials named in the file (mtllib/usemtl) are ignored: the mesh gets
-// the material it is given.
+// the material it is given (io/obj_model.h reads a model with its materials).
 
 #include "../core/engine_linkage.h"
 #include "../mesh.h"
@@ -105,6 +105,23 @@ inline bool obj_number_tame(const std::string& word) {
     return exponent_digits <= 3 && exponent <= 300;
 }
 
+// Calls f(line, number) for each line of an OBJ or MTL file's text as tinyobjloader splits them
+// (at "\n", "\r\n" or a lone "\r"), `line` a stream of its words, numbers from 1; after refusing a
+// NUL byte anywhere (a text format holds none): "path:LINE: malformed <kind> file: a NUL byte".
+template <class F>
+void for_each_obj_line(const std::string& text, const std::string& path, const char* kind, F&& f) {
+    if (size_t nul = text.find('\0'); nul != std::string::npos)
+        throw scene_error(path + ":" + std::to_string(line_index(text).line_of(nul)) + ": malformed " + kind +
+                          " file: a NUL byte (is this a binary or damaged file?)");
+    size_t next = 0, number = 0;
+    while (next < text.size()) {
+        const size_t end = std::min(text.find_first_of("\r\n", next), text.size());
+        std::istringstream line{text.substr(next, end - next)};
+        next = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+        f(line, ++number);
+    }
+}
+
 // tinyobjloader reads what it can and silently turns a malformed number into 0, converts numbers
 // with undefined behaviour when they are out of range, and splits a polygon into triangles in
 // time quadratic in its corners; so the lines that matter are checked first, split as
@@ -119,24 +136,15 @@ inline bool obj_number_tame(const std::string& word) {
 //     = relative) that is 0, does not exist (so far in the file), or is beyond an int;
 //   - a number on an s, t or vw line that is beyond an int (on a vw line, once rounded to a float).
 inline void check_obj_text(const std::string& text, const std::string& path) {
-    if (size_t nul = text.find('\0'); nul != std::string::npos)
-        throw scene_error(path + ":" + std::to_string(line_index(text).line_of(nul)) +
-                          ": malformed OBJ file: a NUL byte (is this a binary or damaged file?)");
     size_t counts[3] = {0, 0, 0}; // v, vt, vn lines so far
     const char* count_names[3] = {"vertex", "texture coordinate", "normal"};
     const char* plural_names[3] = {"vertices", "texture coordinates", "normals"};
-    // Lines as tinyobjloader splits them: at "\n", "\r\n" or a lone "\r".
-    size_t next = 0, number = 0;
-    while (next < text.size()) {
-        const size_t end = std::min(text.find_first_of("\r\n", next), text.size());
-        std::istringstream line{text.substr(next, end - next)};
-        next = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
-        ++number;
+    for_each_obj_line(text, path, "OBJ", [&](std::istringstream& line, size_t number) {
         auto fail = [&](const std::string& what) {
             throw scene_error(path + ":" + std::to_string(number) + ": malformed OBJ file: " + what);
         };
         std::string keyword;
-        if (!(line >> keyword)) continue;
+        if (!(line >> keyword)) return;
         if (keyword == "v" || keyword == "vn" || keyword == "vt") {
             size_t needed = keyword == "vt" ? 1 : 3, count = 0;
             for (std::string word; line >> word; ++count) {
@@ -194,7 +202,7 @@ inline void check_obj_text(const std::string& text, const std::string& path) {
                         fail("'" + token_text(word) + "' in a '" + keyword + "' line is out of range (of an int, or of a float)");
                 }
         }
-    }
+    });
 }
 
 } // namespace detail
@@ -204,20 +212,27 @@ RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> load_obj(const std::str
     return decode_obj(read_file(path, "OBJ file"), path, std::move(mat));
 }
 
-RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
-                                                                    std::shared_ptr<material> mat) {
-    detail::check_obj_text(text, path);
+namespace detail {
 
+// tinyobjloader's reading of an OBJ file's text (checked first: check_obj_text) with the text of
+// its material library (empty: none); throws scene_error "path: malformed OBJ file: ..." when it
+// fails.
+inline void parse_obj(tinyobj::ObjReader& reader, const std::string& text, const std::string& path,
+                      const std::string& mtl_text) {
+    check_obj_text(text, path);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    // From the text already read; material libraries are not needed (see the top of the file).
-    if (!reader.ParseFromString(text, "", config)) {
-        std::string why = detail::first_line(reader.Error());
+    if (!reader.ParseFromString(text, mtl_text, config)) {
+        std::string why = first_line(reader.Error());
         throw scene_error(path + ": malformed OBJ file" + (why.empty() ? "" : ": " + why));
     }
+}
 
+// The triangle mesh of what `reader` read, all of its faces with material `mat`; with
+// `face_materials`, each face's material number in the file's library (-1: none) too.
+inline std::shared_ptr<triangle_mesh> mesh_of_obj(const tinyobj::ObjReader& reader, const std::string& path,
+                                                  std::shared_ptr<material> mat, std::vector<int>* face_materials) {
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
     auto mesh = std::make_shared<triangle_mesh>();
     mesh->mat = std::move(mat);
@@ -234,7 +249,6 @@ RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::s
         mesh->normals.emplace_back(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]);
     for (size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2)
         mesh->uvs.push_back({double(attrib.texcoords[i]), double(attrib.texcoords[i + 1])});
-
     // Indices, checked against the arrays they index (tinyobjloader leaves that to the caller).
     auto checked = [&](int index, size_t size, const char* what) -> uint32_t {
         if (index < 0) return triangle_mesh::no_index;
@@ -245,7 +259,7 @@ RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::s
     };
     bool any_normals = false, any_uvs = false;
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        size_t offset = 0;
+        size_t offset = 0, face = 0;
         for (unsigned char corners : shape.mesh.num_face_vertices) {
             if (corners != 3) // triangulation failed: fewer than three corners
                 throw scene_error(path + ": malformed OBJ file: a face in '" + shape.name + "' has " +
@@ -264,12 +278,25 @@ RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::s
             mesh->faces.push_back(f);
             mesh->face_normals.push_back(fn);
             mesh->face_uvs.push_back(ft);
+            if (face_materials)
+                face_materials->push_back(face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1);
+            ++face;
         }
     }
     if (mesh->faces.empty()) throw scene_error(path + ": OBJ file has no faces");
     if (!any_normals) mesh->face_normals.clear();
     if (!any_uvs) mesh->face_uvs.clear();
     return mesh;
+}
+
+} // namespace detail
+
+RTWEEKEND_ENGINE_FUNCTION std::shared_ptr<triangle_mesh> decode_obj(const std::string& text, const std::string& path,
+                                                                    std::shared_ptr<material> mat) {
+    tinyobj::ObjReader reader;
+    // From the text already read; material libraries are not needed (see the top of the file).
+    detail::parse_obj(reader, text, path, "");
+    return detail::mesh_of_obj(reader, path, std::move(mat), nullptr);
 }
 
 #endif // RTWEEKEND_ENGINE_BODIES

@@ -28,6 +28,8 @@
 //   box ax ay az bx by bz <material> [<transform>...]
 //                                book 2's box: six quads between opposite corners a and b
 //   mesh file.obj <material> [smooth] [<transform>...]
+//   mesh file.obj mtl [smooth] [<transform>...]
+//                                the OBJ with the materials of its MTL library (obj_model.h)
 //                                an OBJ mesh (or .ply: a PLY mesh); a relative path is relative to
 //                                the scene file; `smooth` shades with its vertex normals (computed,
 //                                area-weighted, when the file has none)
@@ -88,6 +90,9 @@ struct scene_description {
     camera cam;
     hittable_list world;
     std::vector<point_light> point_lights; // found by light sampling only (render with rt::render(cam, world, point_lights))
+    // What was read but cannot be rendered as written, one line each (a model's unsupported
+    // maps: io/obj_model.h); the render apps print them.
+    std::vector<std::string> warnings;
     // Every file the scene was read from: the scene file (load_scene), then its meshes and image
     // textures in the order read, as opened. What decides the image besides the settings, so what
     // a fingerprint of the scene hashes (io/slice_file.h: slices of different scenes do not merge).
@@ -130,6 +135,7 @@ RTWEEKEND_ENGINE_FUNCTION scene_description decode_scene(const std::string& text
 #include "../triangle.h"
 #include "../core/input_limits.h"
 #include "obj.h"
+#include "obj_model.h"
 #include "ply.h"
 
 namespace rt {
@@ -300,6 +306,8 @@ class scene_parser {
     color plain_colour(const scene_line& line, size_t& i, const char* what) const;
     std::shared_ptr<material> material_at(const scene_line& line, size_t& i) const;
     std::shared_ptr<hittable> transforms_from(const scene_line& line, size_t i, std::shared_ptr<hittable> object) const;
+    // `mesh file.obj mtl [smooth] [<transform>...]`: the model with its own materials (obj_model.h).
+    std::shared_ptr<hittable> model_line(const scene_line& line, const std::string& file, size_t at) const;
     // A shape directive starting at field i (sphere, moving_sphere, triangle, quad, box, mesh)
     // with its material and transforms, to the end of the line.
     std::shared_ptr<hittable> shape_at(const scene_line& line, size_t i) const;
@@ -490,6 +498,7 @@ inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, 
         need(3, "mesh file.obj material ...");
         const std::string file = resolve(line.word(i + 1));
         size_t at = i + 2;
+        if (line.word(at) == "mtl") return model_line(line, file, at + 1);
         std::shared_ptr<material> mat = material_at(line, at);
         std::shared_ptr<triangle_mesh> mesh;
         try {
@@ -510,6 +519,27 @@ inline std::shared_ptr<hittable> scene_parser::shape_at(const scene_line& line, 
         return transforms_from(line, at, std::move(mesh));
     }
     line.fail("unknown shape '" + kind + "' (expected sphere, moving_sphere, triangle, quad, box or mesh)");
+}
+
+inline std::shared_ptr<hittable> scene_parser::model_line(const scene_line& line, const std::string& file, size_t at) const {
+    if (std::filesystem::path(file).extension() == ".ply") line.fail("mtl: a PLY mesh has no material library; give a material");
+    obj_model model;
+    try {
+        model = load_obj_model(file);
+    } catch (const scene_error& e) {
+        line.fail(e.what());
+    }
+    scene_.files.insert(scene_.files.end(), model.files.begin(), model.files.end());
+    for (const std::string& w : model.warnings) scene_.warnings.push_back(w);
+    if (at < line.size() && line.word(at) == "smooth") {
+        for (const auto& object : model.world.objects) {
+            auto* mesh = static_cast<triangle_mesh*>(object.get());
+            if (mesh->normals.empty() || mesh->face_normals.empty()) mesh->compute_vertex_normals();
+            else mesh->smooth_shading = true;
+        }
+        ++at;
+    }
+    return transforms_from(line, at, std::make_shared<hittable_list>(std::move(model.world)));
 }
 
 // texture NAME solid r g b | checker SCALE <colour> <colour> | image FILE | noise SCALE

@@ -103,19 +103,23 @@ inline halves split(const std::string& input, const std::string& separator) {
     return {input.substr(0, at), input.substr(at + separator.size()), true};
 }
 
-inline void refused(const rt::scene_error& e) {
-    const std::string message = e.what();
+// A message the program prints (an error or a warning) must be one line: not empty, no line
+// break, no NUL byte; aborts (a finding) otherwise.
+inline void check_one_line(const std::string& message) {
     const char* problem = message.empty()                            ? "is empty"
                           : message.find('\n') != std::string::npos ? "spans more than one line"
                           : message.find('\0') != std::string::npos ? "holds a NUL byte"
                                                                      : nullptr;
-    if (!problem) {
-        if (const char* verbose = std::getenv("RTWEEKEND_FUZZ_VERBOSE"); verbose && *verbose == '1')
-            std::fprintf(stderr, "fuzz: refused: %s\n", message.c_str());
-        return;
-    }
-    std::fprintf(stderr, "fuzz: the error message %s: '%s'\n", problem, message.c_str());
+    if (!problem) return;
+    std::fprintf(stderr, "fuzz: the message %s: '%s'\n", problem, message.c_str());
     std::abort();
+}
+
+inline void refused(const rt::scene_error& e) {
+    const std::string message = e.what();
+    check_one_line(message);
+    if (const char* verbose = std::getenv("RTWEEKEND_FUZZ_VERBOSE"); verbose && *verbose == '1')
+        std::fprintf(stderr, "fuzz: refused: %s\n", message.c_str());
 }
 
 } // namespace fuzz
