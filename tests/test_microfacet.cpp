@@ -123,7 +123,7 @@ TEST_CASE("GGX: chi-square of sample_visible() against visible_pdf()") {
             // Bins in s = sqrt(1 - mu) (uniform in s: dense near the pole) and phi; the expected
             // count of a cell is N times the density integrated over it (6 x 6 midpoints).
             const int ns = 12, nphi = 16, q = 6;
-            const long N = 300000;
+            const long N = test::sanitized_share(300000); // an eighth under the sanitizers
             std::vector<double> obs(ns * nphi, 0), expect(ns * nphi, 0);
             for (int i = 0; i < ns; ++i)
                 for (int j = 0; j < nphi; ++j) {
@@ -158,7 +158,7 @@ TEST_CASE("GGX albedo table: against random draws, its limits, and its Schlick s
             const float alpha = float(r * r);
             const ggx g{alpha, alpha};
             const vec3f wo = spherical(mu, 0);
-            const long N = 400000;
+            const long N = test::sanitized_share(400000); // an eighth under the sanitizers
             double sum = 0, sum5 = 0, sum2 = 0;
             for (long k = 0; k < N; ++k) {
                 const vec3f m = g.sample_visible(wo, rng.next_float(), rng.next_float());
@@ -238,7 +238,7 @@ TEST_CASE("rough materials: sample() is eval / pdf, and chi-square against pdf()
                     int i = int(std::upper_bound(e.begin(), e.end(), theta) - e.begin()) - 1;
                     return i < 0 ? 0 : std::min(i, ns - 1);
                 };
-                const long N = 200000;
+                const long N = test::sanitized_share(200000); // an eighth under the sanitizers
                 const size_t cells = 2 * ns * nphi;
                 std::vector<double> obs(cells + 1, 0), expect(cells + 1, 0);
                 double total = 0;
@@ -280,7 +280,7 @@ TEST_CASE("rough materials: sample() is eval / pdf, and chi-square against pdf()
                         ++compared;
                     }
                 }
-                CHECK(compared > 1000);
+                CHECK(compared > N / 200);
                 const chi2::result r = chi2::test(obs, expect);
                 INFO("chi2 = " << r.statistic << ", dof " << r.dof << ", p = " << r.p_value);
                 CHECK(r.dof >= 20);
@@ -350,7 +350,7 @@ TEST_CASE("rough materials: the furnace: a white rough conductor reflects everyt
                 CAPTURE(deg);
                 const shading_point sp{normal_m, true};
                 const vec3f wo = world(std::cos(deg * pi_d / 180), 2.0);
-                const long N = 100000;
+                const long N = test::sanitized_share(100000); // an eighth under the sanitizers
                 double sum = 0, sum2 = 0;
                 for (long k = 0; k < N; ++k) {
                     material_sample s;
@@ -369,7 +369,7 @@ TEST_CASE("rough materials: the furnace: a white rough conductor reflects everyt
         const compiled_material m = compiled(rough_dielectric(1.5, r));
         pcg32 g(5);
         const shading_point sp{normal_m, true};
-        const long N = 100000;
+        const long N = test::sanitized_share(100000); // an eighth under the sanitizers
         double sum = 0;
         for (long k = 0; k < N; ++k) {
             material_sample s;
