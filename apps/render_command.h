@@ -8,7 +8,8 @@
 // it makes the same images.
 //
 //   description render_description()               the app's name, summary and operands
-//   rt::scene_description read_text_scene(opt)      load_scene(opt.positional[0]), the flags applied
+//   rt::scene_description read_text_scene(opt)      load_scene(opt.positional[0]) or, for a .obj, the
+//                                                   model with its materials (model_scene), the flags applied
 //                                                   (opt.apply), the image size checked after --width
 //   render_text_scene(opt, scene)                   renders, writes -o FILE or a PPM on stdout, or with
 //                                                   --samples A:B the slice (io/slice_file.h)
@@ -42,8 +43,8 @@
 namespace app {
 
 inline description render_description() {
-    description d{"render", "Renders a scene file: a text scene with the path tracer, or a CENG795 XML scene "
-                            "with the Whitted ray tracer.",
+    description d{"render", "Renders a scene file: a text scene or an OBJ model with the path tracer, or a CENG795 "
+                            "XML scene with the Whitted ray tracer.",
                   "SCENE.txt|SCENE.xml|SCENE.json|MODEL.obj", 1, 1};
     d.xml_scenes = true;
     d.slices = true;
