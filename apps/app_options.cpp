@@ -95,6 +95,10 @@ void print_usage(const description& d, std::FILE* to) {
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
                  d.name, d.operands[0] ? " " : "", d.operands, d.summary);
+    if (d.time_budget)
+        std::fprintf(to,
+                     "  --time S     a time budget: passes of samples (of --spp at most) until S seconds are spent;\n"
+                     "               the image of the passes completed, the same as `--samples 0:M` of them\n");
     if (d.slices)
         std::fprintf(to,
                      "  --samples A:B render samples A to B-1 of every pixel (of a render of --spp N, B <= N) and\n"
@@ -228,6 +232,8 @@ options parse_arguments(int argc, char** argv, const description& d) {
             (arg == "--look-from" ? o.look_from : o.look_at) = rt::point3(xyz[0], xyz[1], xyz[2]);
         } else if (arg == "--fov") {
             o.fov = detail::real_value(arg, next(), 1e-3, 179);
+        } else if (arg == "--time" && d.time_budget) {
+            o.time_budget = detail::real_value(arg, next(), 1e-3, 1e7);
         } else if (arg == "--integrator" && d.xml_scenes) {
             std::string v = next();
             if (v != "path" && v != "whitted") stop_parsing("--integrator needs path or whitted, got '" + v + "'");
@@ -263,6 +269,8 @@ options parse_arguments(int argc, char** argv, const description& d) {
         stop_parsing("--spp, --depth, --adaptive, --seed, --estimator, --sampler and --filter apply to XML scenes only "
                      "with --integrator path, and --width never does (their files set the resolution)");
     if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
+    if (o.time_budget && (xml || o.samples || o.adaptive.value_or(0) > 0))
+        stop_parsing("--time applies to text scenes and models, without --samples or --adaptive");
     if (xml && (o.look_from || o.look_at || o.fov))
         stop_parsing("--look-from, --look-at and --fov apply to text scenes and models (XML cameras are the file's)");
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");

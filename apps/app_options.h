@@ -69,6 +69,7 @@ struct options {
     std::optional<rt::pixel_filter> filter;      // --filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C]
     std::optional<rt::point3> look_from, look_at; // --look-from X,Y,Z, --look-at X,Y,Z (text scenes, models)
     std::optional<double> fov;                    // --fov DEGREES: the vertical field of view
+    std::optional<double> time_budget;            // --time SECONDS: passes of samples until it is spent
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
     // (rtweekend/io/slice_file.h) for `merge`.
@@ -91,6 +92,8 @@ struct description {
     bool xml_scenes = false;
     // Set by apps that render sample slices: they take --samples A:B.
     bool slices = false;
+    // Set by apps that take a time budget, --time S (render; render_mpi's ranks cannot stop apart).
+    bool time_budget = false;
     // Whether parse() checks that -o can be written. render_mpi checks it itself, on rank 0 only
     // (the only rank that writes) and agreed with the others, so that no rank exits alone.
     bool check_output = true;

@@ -12,7 +12,8 @@
 //                                                   model with its materials (model_scene), the flags applied
 //                                                   (opt.apply), the image size checked after --width
 //   render_text_scene(opt, scene)                   renders, writes -o FILE or a PPM on stdout, or with
-//                                                   --samples A:B the slice (io/slice_file.h)
+//                                                   --samples A:B the slice (io/slice_file.h); --time S:
+//                                                   passes until S seconds are spent (render_with_budget)
 //   rt::whitted_scene read_xml_scene(opt)           load_xml_scene(opt.positional[0]), at least one camera
 //   xml_output_paths(scene, scene_path, dir)        each camera's image path inside -o DIR, all checked
 //   render_xml_scene(opt, scene, outputs)           every camera, Whitted or (--integrator path) path traced
@@ -32,6 +33,8 @@
 #include <rtweekend/core/text_lines.h>
 #include <rtweekend/io/xml_scene.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +51,7 @@ inline description render_description() {
                   "SCENE.txt|SCENE.xml|SCENE.json|MODEL.obj", 1, 1};
     d.xml_scenes = true;
     d.slices = true;
+    d.time_budget = true;
     return d;
 }
 
@@ -354,7 +358,58 @@ inline rt::scene_description read_text_scene(const options& opt) {
     return scene;
 }
 
+// --time S: the render in passes of samples [k p, (k + 1) p) of the --spp N render (p = N / 16,
+// at least 1), each pass's exact sums added (render/fixed_point.h), until the next pass would end
+// past the budget (judged by the last pass's time) or all N samples are taken. The image is the
+// mean of the passes completed: the same bytes as `--samples 0:M` of them, M = the samples taken,
+// at any thread count. At least one pass is rendered.
+inline rt::render_result render_with_budget(const options& opt, const rt::scene_description& scene) {
+    const auto start = std::chrono::steady_clock::now();
+    auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    rt::render_settings settings = text_scene_settings(opt, scene.cam);
+    const int spp = settings.samples_per_pixel, pass = std::max(1, spp / 16);
+    settings.keep_sums = true;
+    settings.quiet = true;
+    const rt::camera_frame frame = scene.cam.frame();
+    const rt::compiled_scene compiled = rt::compile_scene(scene.world, frame.position, scene.point_lights);
+    rt::render_result total;
+    int done = 0;
+    while (done < spp) {
+        const auto pass_start = std::chrono::steady_clock::now();
+        settings.first_sample = done;
+        settings.end_sample = std::min(done + pass, spp);
+        rt::render_result r = rt::path_trace(compiled, frame, scene.cam.sky(), settings);
+        if (r.stats.interrupted) return r; // Ctrl-C: write_output says so
+        if (done == 0) {
+            total = std::move(r);
+        } else {
+            for (size_t i = 0; i < total.sums.rgb.size(); ++i) total.sums.rgb[i] += r.sums.rgb[i];
+            for (size_t i = 0; i < total.sums.counts.size(); ++i) total.sums.counts[i] += r.sums.counts[i];
+            total.stats.rays += r.stats.rays;
+            total.stats.samples += r.stats.samples;
+            total.stats.nonfinite_samples += r.stats.nonfinite_samples;
+            total.stats.saturated_samples += r.stats.saturated_samples;
+        }
+        done = settings.end_sample;
+        const double elapsed = seconds_since(start), last = seconds_since(pass_start);
+        if (elapsed + last > *opt.time_budget) break;
+    }
+    total.img = rt::mean_image(total.sums);
+    total.stats.end_sample = done;
+    total.stats.seconds = seconds_since(start);
+    if (!opt.quiet)
+        std::fprintf(stderr, "render: %d of %d samples per pixel (passes of %d) in %.3f s, budget %g s: %llu rays\n", done,
+                     spp, pass, total.stats.seconds, *opt.time_budget, (unsigned long long)total.stats.rays);
+    return total;
+}
+
 inline void render_text_scene(const options& opt, const rt::scene_description& scene) {
+    if (opt.time_budget) {
+        write_output(opt, render_with_budget(opt, scene));
+        return;
+    }
     if (!opt.samples) {
         write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
         return;
