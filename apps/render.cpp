@@ -1,11 +1,13 @@
-// render: renders a scene file. A text scene (format: docs/scene-files.md) or an OBJ model with
-// its MTL materials (docs/models.md) goes through the path tracer, flags overriding the camera;
+// render: renders a scene file. A text scene (format: docs/scene-files.md) or a model (an OBJ with
+// its MTL materials, a glTF 2.0 .gltf or .glb: docs/models.md) goes through the path tracer, flags
+// overriding the camera;
 // a CENG795 XML scene (docs/course.md) goes through the Whitted ray tracer, one image per camera,
 // named by the camera's ImageName.
 //
 //   render scene.txt -o scene.png
 //   render scene.txt --width 1200 --spp 100 > scene.ppm
 //   render model.obj --look-from 2,2,3 -o model.png
+//   render model.glb -o model.png
 //   render scene.xml -o out/ --bfc on
 //   render scene.xml -o out/ --integrator path --spp 256
 

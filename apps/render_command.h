@@ -8,8 +8,8 @@
 // it makes the same images.
 //
 //   description render_description()               the app's name, summary and operands
-//   rt::scene_description read_text_scene(opt)      load_scene(opt.positional[0]) or, for a .obj, the
-//                                                   model with its materials (model_scene), the flags applied
+//   rt::scene_description read_text_scene(opt)      load_scene(opt.positional[0]) or, for a .obj, .gltf or
+//                                                   .glb, the model (io/model_scene.h), the flags applied
 //                                                   (opt.apply), the image size checked after --width
 //   render_text_scene(opt, scene)                   renders, writes -o FILE or a PPM on stdout, or with
 //                                                   --samples A:B the slice (io/slice_file.h); --time S:
@@ -27,7 +27,7 @@
 #include <rtweekend/scene/compiled_scene.h>
 #include <rtweekend/scene/scene_compiler.h>
 #include <rtweekend/course/whitted.h>
-#include <rtweekend/io/obj_model.h>
+#include <rtweekend/io/model_scene.h>
 #include <rtweekend/io/scene_file.h>
 #include <rtweekend/io/slice_file.h>
 #include <rtweekend/core/text_lines.h>
@@ -46,9 +46,9 @@
 namespace app {
 
 inline description render_description() {
-    description d{"render", "Renders a scene file: a text scene or an OBJ model with the path tracer, or a CENG795 "
-                            "XML scene with the Whitted ray tracer.",
-                  "SCENE.txt|SCENE.xml|SCENE.json|MODEL.obj", 1, 1};
+    description d{"render", "Renders a scene file: a text scene or a model (OBJ, glTF) with the path tracer, or a "
+                            "CENG795 XML scene with the Whitted ray tracer.",
+                  "SCENE.txt|SCENE.xml|SCENE.json|MODEL.obj|MODEL.gltf|MODEL.glb", 1, 1};
     d.xml_scenes = true;
     d.slices = true;
     d.time_budget = true;
@@ -315,36 +315,9 @@ inline void render_xml_scene(const options& opt, const rt::whitted_scene& scene,
     }
 }
 
-// A model (`render model.obj`): the OBJ with its materials (io/obj_model.h), seen from the
-// default view unless --look-from, --look-at and --fov say otherwise: looking at the centre of its
-// bounds from the front (+z), right and above, along (0.6, 0.45, 1), far enough that a 35-degree
-// vertical view holds its bounding sphere; 640 pixels wide at 4:3, 64 samples, depth 16. Lit by
-// the book's sky when no material emits, in the dark otherwise.
-inline rt::scene_description model_scene(const std::string& path) {
-    rt::obj_model model = rt::load_obj_model(path);
-    rt::scene_description scene;
-    scene.warnings = std::move(model.warnings);
-    scene.files = std::move(model.files);
-    scene.world = std::move(model.world);
-    rt::camera& cam = scene.cam;
-    cam.aspect_ratio = 4.0 / 3.0;
-    cam.image_width = 640;
-    cam.samples_per_pixel = 64;
-    cam.max_depth = 16;
-    cam.vfov = 35;
-    cam.lookat = 0.5 * (model.lo + model.hi);
-    const double radius = 0.5 * (model.hi - model.lo).length();
-    const double distance = (radius > 0 ? radius : 1.0) / std::sin(0.5 * cam.vfov * rt::pi / 180) * 1.05;
-    cam.lookfrom = cam.lookat + distance * rt::unit_vector(rt::vec3(0.6, 0.45, 1.0));
-    if (model.emits) cam.background = rt::color(0, 0, 0);
-    return scene;
-}
-
-inline bool is_model(const std::string& path) { return rt::lowercase_extension(path) == ".obj"; }
-
 inline rt::scene_description read_text_scene(const options& opt) {
     const std::string& path = opt.positional[0];
-    rt::scene_description scene = is_model(path) ? model_scene(path) : rt::load_scene(path);
+    rt::scene_description scene = rt::is_model_file(path) ? rt::load_model_scene(path) : rt::load_scene(path);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "render: warning: %s\n", w.c_str());
     opt.apply(scene.cam);
     // --width may make the image larger than the file did: the pixel limit again, before the

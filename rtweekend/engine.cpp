@@ -12,3 +12,5 @@
 #include "rtweekend.h"
 #include "scene/scene_compiler.h"
 #include "io/xml_scene.h"
+#include "io/gltf_model.h"
+#include "io/model_scene.h"

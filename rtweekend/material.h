@@ -393,27 +393,38 @@ class metal_roughness : public material {
   public:
     metal_roughness(const color& base_colour, double metallic, double roughness)
         : base_colour_(base_colour), metallic_(metallic), roughness_(roughness) {}
+    // The base colour looked up per hit, as lambertian's albedo is (glTF's baseColorTexture).
+    metal_roughness(std::shared_ptr<texture> base_colour, double metallic, double roughness)
+        : base_colour_(std::move(base_colour)), metallic_(metallic), roughness_(roughness) {}
 
     using material::scatter;
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
-        return detail::scatter_through_contract(compiled(), r_in, rec, attenuation, scattered);
+        compiled_material m = compiled();
+        if (!base_colour_.solid()) m = m.with_colour(vec3f(base_colour_.at(rec)));
+        return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
     }
 
+    // For a texture other than a solid_color the scene compiler adds it to the scene's texture
+    // table, as for lambertian.
     compiled_material compiled() const {
         metal_rough_bsdf b;
-        b.base_colour = vec3f(base_colour_);
+        b.base_colour = vec3f(base_colour_.constant());
         b.metallic = static_cast<float>(metallic_);
-        const float alpha = alpha_of_roughness(float(roughness_));
+        // The blend has no mirror limit of its own (its coat and metal are microfacet lobes
+        // throughout): alpha stops at smooth_alpha, a mirror to within a thousandth of a radian.
+        const float alpha = std::max(alpha_of_roughness(float(roughness_)), smooth_alpha);
         b.distribution = {alpha, alpha};
         return compiled_material::of(b, this);
     }
 
-    const color& base_colour() const { return base_colour_; }
+    // The base colour when the texture is a solid_color; black for any other texture.
+    const color& base_colour() const { return base_colour_.constant(); }
+    const std::shared_ptr<texture>& tex() const { return base_colour_.tex(); }
     double metallic() const { return metallic_; }
     double roughness() const { return roughness_; }
 
   private:
-    color base_colour_;
+    surface_colour base_colour_;
     double metallic_, roughness_;
 };
 

@@ -36,7 +36,8 @@
 // main that links the engine would pay half a second to parse them), image/image_read.h,
 // measure/metrics.h and io/ray_file.h, which serve the measuring tools only; io/xml_scene.h
 // (the course's XML and JSON scenes: pugixml and nlohmann/json, whose parsing alone is about 2 s
-// of every header-only compile; the course programs include it).
+// of every header-only compile; the course programs include it); io/gltf_model.h and
+// io/model_scene.h (glTF models through tinygltf, and models as ready scenes: `render` uses them).
 #include "render/path_tracer.h"
 #include "course/whitted.h"
 #include "core/file.h"

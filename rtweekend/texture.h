@@ -9,6 +9,9 @@
 //   image_texture("earthmap.jpg")            a picture wrapped by (u, v): u left to right, v bottom
 //                                            to top; sRGB files decoded to linear (rtw_stb_image.h)
 //   noise_texture(scale)                     the book's marble: 0.5 (1 + sin(scale z + 10 turb(p)))
+//   image_texture(rtw_image, image_sampling) a picture already decoded, read as a model's sampler
+//                                            asks: repeated or mirrored beyond [0, 1], bilinear,
+//                                            each pixel times a factor (glTF, io/gltf_model.h)
 //
 //   auto mat = make_shared<lambertian>(make_shared<checker_texture>(0.32, color(.2, .3, .1), color(.9, .9, .9)));
 //
@@ -69,6 +72,22 @@ class checker_texture : public texture {
     std::shared_ptr<texture> even_, odd_;
 };
 
+// How an image_texture reads its picture. The default is the book's rule: the nearest pixel,
+// (u, v) clamped to [0, 1]. A model's sampler (glTF's, io/gltf_model.h) may instead repeat or
+// mirror the picture beyond [0, 1], blend the four nearest pixel centres (bilinear), and scale
+// every pixel by a factor (glTF's baseColorFactor times its texture).
+struct image_sampling {
+    enum class wrap_mode { clamp, repeat, mirror };
+    wrap_mode wrap_u = wrap_mode::clamp, wrap_v = wrap_mode::clamp;
+    bool bilinear = false;
+    color factor{1, 1, 1};
+
+    bool is_books() const {
+        return wrap_u == wrap_mode::clamp && wrap_v == wrap_mode::clamp && !bilinear && factor.x() == 1 &&
+               factor.y() == 1 && factor.z() == 1;
+    }
+};
+
 class image_texture : public texture {
   public:
     // A file that is missing or not an image does not throw here: the book's constructor prints
@@ -76,6 +95,8 @@ class image_texture : public texture {
     // a world that holds this texture then fails with load_error(), one line naming the file
     // (cam.render prints it and exits with status 1), where the book would render its cyan.
     explicit image_texture(const char* filename);
+    // A picture already read (rtw_image::decode), looked up as `sampling` says.
+    image_texture(rtw_image image, const image_sampling& sampling) : image_(std::move(image)), sampling_(sampling) {}
 
     // The pixel's colour; cyan (the book's debugging colour) when the file could not be read.
     color value(double u, double v, const point3& p) const override;
@@ -88,9 +109,15 @@ class image_texture : public texture {
     // far edges belonging to the last pixel.
     static void pixel_at(double u, double v, int width, int height, int& i, int& j);
 
+    const image_sampling& sampling() const { return sampling_; }
+    // The colour at (u, v) of `pixels` (linear RGB, 3 floats per pixel, rows top to bottom, v = 1
+    // the top row) as `s` reads it; what value() and the renderer's image kind both return.
+    static color sample(const float* pixels, int width, int height, double u, double v, const image_sampling& s);
+
   private:
     rtw_image image_;
     std::string load_error_;
+    image_sampling sampling_;
 };
 
 class noise_texture : public texture {
@@ -152,6 +179,62 @@ inline void image_texture::pixel_at(double u, double v, int width, int height, i
     if (j >= height) j = height - 1;
 }
 
+namespace detail {
+
+// A texture coordinate brought into [0, 1] as `mode` wraps it (NaN reads as 0).
+inline double wrap_coordinate(double t, image_sampling::wrap_mode mode) {
+    if (std::isnan(t)) return 0;
+    switch (mode) {
+    case image_sampling::wrap_mode::repeat: return std::isfinite(t) ? t - std::floor(t) : 0;
+    case image_sampling::wrap_mode::mirror: {
+        if (!std::isfinite(t)) return 0;
+        const double m = t - 2 * std::floor(0.5 * t); // in [0, 2): the picture, then its mirror image
+        return m <= 1 ? m : 2 - m;
+    }
+    default: return t < 0 ? 0 : t > 1 ? 1 : t;
+    }
+}
+
+// The pixel index i + k of a row of n pixels as `mode` wraps it.
+inline int wrap_index(long long i, int n, image_sampling::wrap_mode mode) {
+    switch (mode) {
+    case image_sampling::wrap_mode::repeat: return int(((i % n) + n) % n);
+    case image_sampling::wrap_mode::mirror: {
+        const long long period = 2LL * n, m = ((i % period) + period) % period;
+        return int(m < n ? m : period - 1 - m);
+    }
+    default: return i < 0 ? 0 : i >= n ? n - 1 : int(i);
+    }
+}
+
+} // namespace detail
+
+inline color image_texture::sample(const float* pixels, int width, int height, double u, double v,
+                                   const image_sampling& s) {
+    color c;
+    if (!s.bilinear) {
+        int i, j;
+        pixel_at(detail::wrap_coordinate(u, s.wrap_u), detail::wrap_coordinate(v, s.wrap_v), width, height, i, j);
+        const float* px = pixels + (size_t(j) * size_t(width) + size_t(i)) * 3;
+        c = color(px[0], px[1], px[2]);
+    } else {
+        // Pixel centres at half-integers; x and y measured from the left and top edges. Far outside
+        // [0, 1] the coordinates are wrapped first so that floor() stays within a long long.
+        const double uu = std::isfinite(u) && std::fabs(u) < 1e6 ? u : detail::wrap_coordinate(u, s.wrap_u);
+        const double vv = std::isfinite(v) && std::fabs(v) < 1e6 ? v : detail::wrap_coordinate(v, s.wrap_v);
+        const double x = uu * width - 0.5, y = (1 - vv) * height - 0.5;
+        const double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
+        const int i0 = detail::wrap_index((long long)x0, width, s.wrap_u), i1 = detail::wrap_index((long long)x0 + 1, width, s.wrap_u);
+        const int j0 = detail::wrap_index((long long)y0, height, s.wrap_v), j1 = detail::wrap_index((long long)y0 + 1, height, s.wrap_v);
+        auto at = [&](int i, int j) {
+            const float* px = pixels + (size_t(j) * size_t(width) + size_t(i)) * 3;
+            return color(px[0], px[1], px[2]);
+        };
+        c = (1 - fy) * ((1 - fx) * at(i0, j0) + fx * at(i1, j0)) + fy * ((1 - fx) * at(i0, j1) + fx * at(i1, j1));
+    }
+    return c * s.factor;
+}
+
 inline image_texture::image_texture(const char* filename) {
     try {
         image_ = rtw_image(filename);
@@ -162,6 +245,8 @@ inline image_texture::image_texture(const char* filename) {
 
 inline color image_texture::value(double u, double v, const point3& /*p*/) const {
     if (image_.height() <= 0) return color(0, 1, 1);
+    if (!sampling_.is_books())
+        return sample(image_.linear_pixels()->data(), image_.width(), image_.height(), u, v, sampling_);
     int i, j;
     pixel_at(u, v, image_.width(), image_.height(), i, j);
     const rtw_image::rgb c = image_.linear(i, j);

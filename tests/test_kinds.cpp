@@ -335,7 +335,7 @@ void check_texture_kind() {
         // An image_texture that could not be read is refused by the table (the scene compiler
         // names the file); its kind is still checked below on an image in memory.
         REQUIRE(std::is_same_v<K, image_pixels>);
-        image_pixels pixels{std::make_shared<const std::vector<float>>(std::vector<float>{1, 0, 1}), 1, 1};
+        image_pixels pixels{std::make_shared<const std::vector<float>>(std::vector<float>{1, 0, 1}), 1, 1, true, image_sampling{}};
         table.entries.push_back(pixels);
         i = 0;
     }

@@ -142,11 +142,18 @@ inline compiled_material compile_book(const rough_dielectric& g, texture_table*)
     check_roughness(g.roughness_v(), "rough_dielectric roughness");
     return g.compiled();
 }
-inline compiled_material compile_book(const metal_roughness& m, texture_table*) {
-    check_color(m.base_colour(), "metal_roughness base colour");
+inline compiled_material compile_book(const metal_roughness& m, texture_table* textures) {
+    if (!m.tex()) throw scene_error("metal_roughness texture is null");
     if (!(m.metallic() >= 0 && m.metallic() <= 1))
         throw scene_error("metal_roughness metallic must be in [0, 1], got " + number_text(m.metallic()));
     check_roughness(m.roughness(), "metal_roughness roughness");
+    if (!exact_solid_color(m.tex().get())) {
+        if (!textures) return user_entry(m); // its value() per hit, through scatter()
+        compiled_material c = m.compiled();
+        c.texture = textures->add(*m.tex());
+        return c;
+    }
+    check_color(m.base_colour(), "metal_roughness base colour");
     return m.compiled();
 }
 inline compiled_material compile_book(const whitted_material& w, texture_table*) {

@@ -32,14 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         rt::obj_model model = rt::decode_obj_model(model_obj, RTWEEKEND_TEST_DATA "/models/fuzz_input.obj",
                                                    fuzz::bytes(data, size), RTWEEKEND_TEST_DATA "/models/fuzz_input.mtl");
         for (const std::string& w : model.warnings) fuzz::check_one_line(w);
-        rt::camera cam;
-        cam.lookfrom = rt::point3(0, 0, 4);
-        cam.lookat = rt::point3(0, 0, 0);
-        cam.background = rt::color(1, 1, 1);
-        fuzz::shrink(cam);
-        rt::hittable_list world;
-        world.add(std::make_shared<rt::hittable_list>(std::move(model.world)));
-        rt::render(cam, world);
+        fuzz::render_model(std::move(model.world));
     } catch (const rt::scene_error& e) {
         fuzz::refused(e);
     }

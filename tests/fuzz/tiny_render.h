@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 namespace fuzz {
 
@@ -24,6 +26,19 @@ inline void shrink(rt::camera& cam) {
     cam.settings.threads = 1;
     cam.settings.quiet = true;
     cam.settings.stop = nullptr;
+}
+
+// A model's world rendered tiny (shrink), seen from (0, 0, 4) towards the origin under a white sky,
+// with its point lights: what the model harnesses (mtl, gltf) do with an accepted input.
+inline void render_model(rt::hittable_list&& objects, const std::vector<rt::point_light>& lights = {}) {
+    rt::camera cam;
+    cam.lookfrom = rt::point3(0, 0, 4);
+    cam.lookat = rt::point3(0, 0, 0);
+    cam.background = rt::color(1, 1, 1);
+    shrink(cam);
+    rt::hittable_list world;
+    world.add(std::make_shared<rt::hittable_list>(std::move(objects)));
+    rt::render(cam, world, lights);
 }
 
 inline void shrink(rt::whitted_scene& scene) {
