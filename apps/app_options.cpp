@@ -98,7 +98,9 @@ void print_usage(const description& d, std::FILE* to) {
     if (d.time_budget)
         std::fprintf(to,
                      "  --time S     a time budget: passes of samples (of --spp at most) until S seconds are spent;\n"
-                     "               the image of the passes completed, the same as `--samples 0:M` of them\n");
+                     "               the image of the passes completed, the same as `--samples 0:M` of them\n"
+                     "  --preview S  render in passes and rewrite -o FILE (atomically) after a pass once S seconds\n"
+                     "               have passed since it was last written: a viewer that reloads shows it converge\n");
     if (d.slices)
         std::fprintf(to,
                      "  --samples A:B render samples A to B-1 of every pixel (of a render of --spp N, B <= N) and\n"
@@ -234,6 +236,8 @@ options parse_arguments(int argc, char** argv, const description& d) {
             o.fov = detail::real_value(arg, next(), 1e-3, 179);
         } else if (arg == "--time" && d.time_budget) {
             o.time_budget = detail::real_value(arg, next(), 1e-3, 1e7);
+        } else if (arg == "--preview" && d.time_budget) {
+            o.preview = detail::real_value(arg, next(), 0, 1e7); // 0: after every pass
         } else if (arg == "--integrator" && d.xml_scenes) {
             std::string v = next();
             if (v != "path" && v != "whitted") stop_parsing("--integrator needs path or whitted, got '" + v + "'");
@@ -271,6 +275,9 @@ options parse_arguments(int argc, char** argv, const description& d) {
     if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
     if (o.time_budget && (xml || o.samples || o.adaptive.value_or(0) > 0))
         stop_parsing("--time applies to text scenes and models, without --samples or --adaptive");
+    if (o.preview && (xml || o.samples || o.adaptive.value_or(0) > 0))
+        stop_parsing("--preview applies to text scenes and models, without --samples or --adaptive");
+    if (o.preview && o.output.empty()) stop_parsing("--preview needs -o FILE (the image it rewrites)");
     if (xml && (o.look_from || o.look_at || o.fov))
         stop_parsing("--look-from, --look-at and --fov apply to text scenes and models (XML cameras are the file's)");
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");

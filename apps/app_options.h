@@ -70,6 +70,7 @@ struct options {
     std::optional<rt::point3> look_from, look_at; // --look-from X,Y,Z, --look-at X,Y,Z (text scenes, models)
     std::optional<double> fov;                    // --fov DEGREES: the vertical field of view
     std::optional<double> time_budget;            // --time SECONDS: passes of samples until it is spent
+    std::optional<double> preview;                // --preview SECONDS: -o rewritten after passes this far apart
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
     // (rtweekend/io/slice_file.h) for `merge`.

@@ -13,7 +13,8 @@
 //                                                   (opt.apply), the image size checked after --width
 //   render_text_scene(opt, scene)                   renders, writes -o FILE or a PPM on stdout, or with
 //                                                   --samples A:B the slice (io/slice_file.h); --time S:
-//                                                   passes until S seconds are spent (render_with_budget)
+//                                                   passes until S seconds are spent; --preview S: -o
+//                                                   rewritten as passes complete (render_in_passes)
 //   rt::whitted_scene read_xml_scene(opt)           load_xml_scene(opt.positional[0]), at least one camera
 //   xml_output_paths(scene, scene_path, dir)        each camera's image path inside -o DIR, all checked
 //   render_xml_scene(opt, scene, outputs)           every camera, Whitted or (--integrator path) path traced
@@ -331,12 +332,15 @@ inline rt::scene_description read_text_scene(const options& opt) {
     return scene;
 }
 
-// --time S: the render in passes of samples [k p, (k + 1) p) of the --spp N render (p = N / 16,
-// at least 1), each pass's exact sums added (render/fixed_point.h), until the next pass would end
-// past the budget (judged by the last pass's time) or all N samples are taken. The image is the
-// mean of the passes completed: the same bytes as `--samples 0:M` of them, M = the samples taken,
-// at any thread count. At least one pass is rendered.
-inline rt::render_result render_with_budget(const options& opt, const rt::scene_description& scene) {
+// --time S and --preview S: the render in passes of samples [k p, (k + 1) p) of the --spp N render
+// (p = N / 16, at least 1), each pass's exact sums added (render/fixed_point.h). With --time, until
+// the next pass would end past the budget (judged by the last pass's time) or all N samples are
+// taken; at least one pass is rendered. With --preview, after each pass but the last, the image so
+// far is written to -o (atomically, as every output is) once that many seconds have passed since it
+// was last written. The image is the mean of the passes completed: the same bytes as
+// `--samples 0:M` of them, M = the samples taken, at any thread count; a preview after M samples
+// is that image too.
+inline rt::render_result render_in_passes(const options& opt, const rt::scene_description& scene) {
     const auto start = std::chrono::steady_clock::now();
     auto seconds_since = [](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -348,7 +352,8 @@ inline rt::render_result render_with_budget(const options& opt, const rt::scene_
     const rt::camera_frame frame = scene.cam.frame();
     const rt::compiled_scene compiled = rt::compile_scene(scene.world, frame.position, scene.point_lights);
     rt::render_result total;
-    int done = 0;
+    int done = 0, previews = 0;
+    auto last_write = start;
     while (done < spp) {
         const auto pass_start = std::chrono::steady_clock::now();
         settings.first_sample = done;
@@ -367,20 +372,31 @@ inline rt::render_result render_with_budget(const options& opt, const rt::scene_
         }
         done = settings.end_sample;
         const double elapsed = seconds_since(start), last = seconds_since(pass_start);
-        if (elapsed + last > *opt.time_budget) break;
+        if (opt.time_budget && elapsed + last > *opt.time_budget) break;
+        if (opt.preview && done < spp && seconds_since(last_write) >= *opt.preview) {
+            write_output(opt, rt::mean_image(total.sums));
+            last_write = std::chrono::steady_clock::now();
+            ++previews;
+            if (!opt.quiet)
+                std::fprintf(stderr, "render: preview of %d of %d samples per pixel (%.0f %%) after %.1f s: wrote %s\n", done,
+                             spp, 100.0 * done / spp, elapsed, opt.output.c_str());
+        }
     }
     total.img = rt::mean_image(total.sums);
     total.stats.end_sample = done;
     total.stats.seconds = seconds_since(start);
-    if (!opt.quiet)
-        std::fprintf(stderr, "render: %d of %d samples per pixel (passes of %d) in %.3f s, budget %g s: %llu rays\n", done,
-                     spp, pass, total.stats.seconds, *opt.time_budget, (unsigned long long)total.stats.rays);
+    if (!opt.quiet) {
+        std::string budget = opt.time_budget ? ", budget " + rt::number_text(*opt.time_budget) + " s" : "";
+        if (opt.preview) budget += ", " + std::to_string(previews) + " previews";
+        std::fprintf(stderr, "render: %d of %d samples per pixel (passes of %d) in %.3f s%s: %llu rays\n", done, spp, pass,
+                     total.stats.seconds, budget.c_str(), (unsigned long long)total.stats.rays);
+    }
     return total;
 }
 
 inline void render_text_scene(const options& opt, const rt::scene_description& scene) {
-    if (opt.time_budget) {
-        write_output(opt, render_with_budget(opt, scene));
+    if (opt.time_budget || opt.preview) {
+        write_output(opt, render_in_passes(opt, scene));
         return;
     }
     if (!opt.samples) {
