@@ -5,6 +5,7 @@
 
 #include <rtweekend/image/image_write.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -101,6 +102,11 @@ void print_usage(const description& d, std::FILE* to) {
                      "               the image of the passes completed, the same as `--samples 0:M` of them\n"
                      "  --preview S  render in passes and rewrite -o FILE (atomically) after a pass once S seconds\n"
                      "               have passed since it was last written: a viewer that reloads shows it converge\n");
+    if (d.aovs)
+        std::fprintf(to,
+                     "  --aov LIST   also write guides for a denoiser, any of albedo,normal,depth,position: as\n"
+                     "               channels of -o FILE.exr (albedo.R, N.X, Z, P.X, ...), else as FILE.albedo.pfm, ...\n"
+                     "  --aov-only   write the guides alone (fast), no render\n");
     if (d.slices)
         std::fprintf(to,
                      "  --samples A:B render samples A to B-1 of every pixel (of a render of --spp N, B <= N) and\n"
@@ -236,6 +242,20 @@ options parse_arguments(int argc, char** argv, const description& d) {
             o.fov = detail::real_value(arg, next(), 1e-3, 179);
         } else if (arg == "--time" && d.time_budget) {
             o.time_budget = detail::real_value(arg, next(), 1e-3, 1e7);
+        } else if (arg == "--aov" && d.aovs) {
+            const std::string v = next();
+            size_t start = 0;
+            while (start <= v.size()) {
+                const size_t comma = std::min(v.find(',', start), v.size());
+                const std::string name = v.substr(start, comma - start);
+                if (name != "albedo" && name != "normal" && name != "depth" && name != "position")
+                    stop_parsing("--aov: unknown output '" + rt::token_text(name) + "' (expected albedo, normal, depth or position)");
+                if (std::find(o.aovs.begin(), o.aovs.end(), name) == o.aovs.end()) o.aovs.push_back(name);
+                start = comma + 1;
+            }
+        } else if (arg == "--aov-only" && d.aovs) {
+            if (has_inline_value) stop_parsing("--aov-only takes no value");
+            o.aov_only = true;
         } else if (arg == "--preview" && d.time_budget) {
             o.preview = detail::real_value(arg, next(), 0, 1e7); // 0: after every pass
         } else if (arg == "--integrator" && d.xml_scenes) {
@@ -278,6 +298,10 @@ options parse_arguments(int argc, char** argv, const description& d) {
     if (o.preview && (xml || o.samples || o.adaptive.value_or(0) > 0))
         stop_parsing("--preview applies to text scenes and models, without --samples or --adaptive");
     if (o.preview && o.output.empty()) stop_parsing("--preview needs -o FILE (the image it rewrites)");
+    if (o.aov_only && o.aovs.empty()) stop_parsing("--aov-only needs --aov LIST (the guides to write)");
+    if (!o.aovs.empty() && (xml || o.samples)) stop_parsing("--aov applies to text scenes and models, without --samples");
+    if (!o.aovs.empty() && o.output.empty()) stop_parsing("--aov needs -o FILE (the guides are written beside it)");
+    if (o.aov_only && (o.time_budget || o.preview)) stop_parsing("--aov-only renders no image: not with --time or --preview");
     if (xml && (o.look_from || o.look_at || o.fov))
         stop_parsing("--look-from, --look-at and --fov apply to text scenes and models (XML cameras are the file's)");
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");

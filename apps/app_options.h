@@ -71,6 +71,8 @@ struct options {
     std::optional<double> fov;                    // --fov DEGREES: the vertical field of view
     std::optional<double> time_budget;            // --time SECONDS: passes of samples until it is spent
     std::optional<double> preview;                // --preview SECONDS: -o rewritten after passes this far apart
+    std::vector<std::string> aovs;                // --aov albedo,normal,depth,position: denoiser guides (render/guides.h)
+    bool aov_only = false;                        // --aov-only: the guides without the render
     bool path_integrator = false;        // --integrator path (XML scenes: the path tracer, not Whitted)
     // --samples A:B (apps that write slices): samples A to B - 1 of every pixel, written as a slice
     // (rtweekend/io/slice_file.h) for `merge`.
@@ -95,6 +97,8 @@ struct description {
     bool slices = false;
     // Set by apps that take a time budget, --time S (render; render_mpi's ranks cannot stop apart).
     bool time_budget = false;
+    // Set by apps that write denoiser guides, --aov LIST (render).
+    bool aovs = false;
     // Whether parse() checks that -o can be written. render_mpi checks it itself, on rank 0 only
     // (the only rank that writes) and agreed with the others, so that no rank exits alone.
     bool check_output = true;

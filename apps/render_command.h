@@ -24,6 +24,8 @@
 #include "app_options.h"
 
 #include <rtweekend/camera.h>
+#include <rtweekend/image/exr.h>
+#include <rtweekend/render/guides.h>
 #include <rtweekend/render/path_tracer.h>
 #include <rtweekend/scene/compiled_scene.h>
 #include <rtweekend/scene/scene_compiler.h>
@@ -53,6 +55,7 @@ inline description render_description() {
     d.xml_scenes = true;
     d.slices = true;
     d.time_budget = true;
+    d.aovs = true;
     return d;
 }
 
@@ -340,7 +343,8 @@ inline rt::scene_description read_text_scene(const options& opt) {
 // was last written. The image is the mean of the passes completed: the same bytes as
 // `--samples 0:M` of them, M = the samples taken, at any thread count; a preview after M samples
 // is that image too.
-inline rt::render_result render_in_passes(const options& opt, const rt::scene_description& scene) {
+inline rt::render_result render_in_passes(const options& opt, const rt::scene_description& scene,
+                                         const rt::compiled_scene& compiled) {
     const auto start = std::chrono::steady_clock::now();
     auto seconds_since = [](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -350,7 +354,6 @@ inline rt::render_result render_in_passes(const options& opt, const rt::scene_de
     settings.keep_sums = true;
     settings.quiet = true;
     const rt::camera_frame frame = scene.cam.frame();
-    const rt::compiled_scene compiled = rt::compile_scene(scene.world, frame.position, scene.point_lights);
     rt::render_result total;
     int done = 0, previews = 0;
     auto last_write = start;
@@ -394,9 +397,63 @@ inline rt::render_result render_in_passes(const options& opt, const rt::scene_de
     return total;
 }
 
+// --aov LIST: the guides of render/guides.h, with the render's first samples. Beside an .exr
+// output, channels of the same file (albedo.R/G/B, N.X/Y/Z, Z, P.X/Y/Z after R, G, B); beside any
+// other, one PFM each, FILE's stem + ".albedo.pfm" and so on. Each file is written atomically.
+inline std::vector<std::string> write_guides(const options& opt, const rt::guide_images& g, const rt::image* beauty) {
+    struct guide {
+        const char* name;
+        const rt::image* img;
+        std::vector<std::string> channels;
+    };
+    const std::vector<guide> all = {{"albedo", &g.albedo, {"albedo.R", "albedo.G", "albedo.B"}},
+                                    {"normal", &g.normal, {"N.X", "N.Y", "N.Z"}},
+                                    {"depth", &g.depth, {"Z"}},
+                                    {"position", &g.position, {"P.X", "P.Y", "P.Z"}}};
+    std::vector<std::string> written;
+    if (rt::lowercase_extension(opt.output) == ".exr") {
+        std::vector<rt::exr_channels> channels;
+        if (beauty) channels.push_back({beauty, {"R", "G", "B"}});
+        for (const guide& x : all)
+            if (std::find(opt.aovs.begin(), opt.aovs.end(), x.name) != opt.aovs.end()) channels.push_back({x.img, x.channels});
+        rt::write_file_atomically(opt.output, rt::encode_exr(channels, opt.output));
+        written.push_back(opt.output);
+        return written;
+    }
+    if (beauty) write_output(opt, *beauty);
+    const std::filesystem::path out(opt.output);
+    for (const guide& x : all)
+        if (std::find(opt.aovs.begin(), opt.aovs.end(), x.name) != opt.aovs.end()) {
+            const std::string path = (out.parent_path() / (out.stem().string() + "." + x.name + ".pfm")).string();
+            rt::write_image(path, *x.img);
+            written.push_back(path);
+        }
+    return written;
+}
+
 inline void render_text_scene(const options& opt, const rt::scene_description& scene) {
+    if (!opt.aovs.empty()) {
+        const rt::camera_frame frame = scene.cam.frame();
+        const rt::compiled_scene compiled = rt::compile_scene(scene.world, frame.position, scene.point_lights);
+        const rt::render_settings settings = text_scene_settings(opt, scene.cam);
+        const auto start = std::chrono::steady_clock::now();
+        const rt::guide_images g = rt::render_guides(compiled, frame, scene.cam.sky(), settings);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        rt::render_result beauty;
+        if (!opt.aov_only)
+            beauty = opt.time_budget || opt.preview ? render_in_passes(opt, scene, compiled)
+                                                    : rt::path_trace(compiled, frame, scene.cam.sky(), settings);
+        if (beauty.stats.interrupted) return write_output(opt, beauty); // Ctrl-C: the render as it stands
+        const std::vector<std::string> written = write_guides(opt, g, opt.aov_only ? nullptr : &beauty.img);
+        if (!opt.quiet)
+            for (const std::string& w : written)
+                std::fprintf(stderr, "render: wrote %s (guides: %d rays a pixel, %.3f s)\n", w.c_str(),
+                             rt::guide_samples(settings.samples_per_pixel), seconds);
+        return;
+    }
     if (opt.time_budget || opt.preview) {
-        write_output(opt, render_in_passes(opt, scene));
+        const rt::camera_frame frame = scene.cam.frame();
+        write_output(opt, render_in_passes(opt, scene, rt::compile_scene(scene.world, frame.position, scene.point_lights)));
         return;
     }
     if (!opt.samples) {

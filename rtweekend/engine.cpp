@@ -14,3 +14,4 @@
 #include "io/xml_scene.h"
 #include "io/gltf_model.h"
 #include "io/model_scene.h"
+#include "render/guides.h"

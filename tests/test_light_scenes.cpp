@@ -2,6 +2,8 @@
 // (apps/light_scenes.h), and the text format's light directives mean what they say.
 
 #include <rtweekend/io/scene_file.h>
+#include <rtweekend/scene/compiled_scene.h>
+#include <rtweekend/scene/scene_compiler.h>
 
 #include <doctest/doctest.h>
 

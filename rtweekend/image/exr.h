@@ -8,6 +8,10 @@
 //                                  the framebuffer is float: a file read back equals the image
 //                                  bit for bit, which a reference image for error metrics needs
 //                                  (half would round every value to 11 bits and clip above 65504)
+//   encode_exr(channels, name)     the same with any channels of several images of one size: each
+//                                  exr_channels names the channels of one image (its first one to
+//                                  three), as "albedo.R", "N.X", "Z" (render --aov writes the
+//                                  denoiser guides so, beside R, G, B)
 //   decode_exr(bytes, name)        the linear RGB pixels of an EXR file's first part, as float:
 //                                  R, G and B channels of any pixel type (half, float, uint), or a
 //                                  lone Y channel (luminance) copied to all three. Subsampled
@@ -38,6 +42,7 @@
 #include "../core/input_limits.h"
 
 #include <string>
+#include <vector>
 
 namespace rt {
 
@@ -52,6 +57,12 @@ inline const char* exr_not_built_text() {
 }
 
 RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image& img, const std::string& name);
+// Channel k of *img (k < names.size() <= 3) is written as names[k].
+struct exr_channels {
+    const image* img;
+    std::vector<std::string> names;
+};
+RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const std::vector<exr_channels>& channels, const std::string& name);
 RTWEEKEND_ENGINE_FUNCTION image decode_exr(const std::string& bytes, const std::string& name);
 
 } // namespace rt
@@ -81,6 +92,9 @@ namespace rt {
 #if !(defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR)
 
 RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image&, const std::string& name) {
+    throw scene_error("cannot write '" + name + "': " + exr_not_built_text());
+}
+RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const std::vector<exr_channels>&, const std::string& name) {
     throw scene_error("cannot write '" + name + "': " + exr_not_built_text());
 }
 
@@ -271,25 +285,37 @@ inline uint64_t exr_best_ratio(exr_compression_t compression) {
 } // namespace detail
 
 RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const image& img, const std::string& name) {
-    if (img.empty()) throw scene_error("cannot write '" + name + "': the image is empty");
+    return encode_exr(std::vector<exr_channels>{{&img, {"R", "G", "B"}}}, name);
+}
+
+RTWEEKEND_ENGINE_FUNCTION std::string encode_exr(const std::vector<exr_channels>& channels, const std::string& name) {
+    if (channels.empty() || !channels[0].img || channels[0].img->empty())
+        throw scene_error("cannot write '" + name + "': the image is empty");
+    const image& first = *channels[0].img;
+    for (const exr_channels& c : channels)
+        if (!c.img || c.img->width() != first.width() || c.img->height() != first.height() || c.names.empty() ||
+            c.names.size() > 3)
+            throw scene_error("cannot write '" + name + "': its channels' images differ in size");
     try {
-        Imf::Header header(img.width(), img.height(), 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
+        Imf::Header header(first.width(), first.height(), 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
                            Imf::ZIP_COMPRESSION);
-        for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        for (const exr_channels& c : channels)
+            for (const std::string& n : c.names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
         detail::exr_string_ostream out(name);
         {
             Imf::OutputFile file(out, header);
-        // The framebuffer is interleaved RGB floats, rows top to bottom: EXR's y grows downwards
-        // too, so the slices point straight at it.
+            // Each framebuffer is interleaved RGB floats, rows top to bottom: EXR's y grows
+            // downwards too, so the slices point straight at it.
             // (The library only reads through this pointer; Slice takes it non-const.)
-            auto* base = const_cast<char*>(reinterpret_cast<const char*>(img.data().data()));
-            const size_t x_stride = 3 * sizeof(float), y_stride = x_stride * size_t(img.width());
             Imf::FrameBuffer fb;
-            fb.insert("R", Imf::Slice(Imf::FLOAT, base, x_stride, y_stride));
-            fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), x_stride, y_stride));
-            fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), x_stride, y_stride));
+            for (const exr_channels& c : channels) {
+                auto* base = const_cast<char*>(reinterpret_cast<const char*>(c.img->data().data()));
+                const size_t x_stride = 3 * sizeof(float), y_stride = x_stride * size_t(c.img->width());
+                for (size_t k = 0; k < c.names.size(); ++k)
+                    fb.insert(c.names[k], Imf::Slice(Imf::FLOAT, base + k * sizeof(float), x_stride, y_stride));
+            }
             file.setFrameBuffer(fb);
-            file.writePixels(img.height());
+            file.writePixels(first.height());
         } // the file's destructor writes the table of chunk offsets, so the bytes are complete after it
         return std::move(out.bytes());
     } catch (const scene_error&) {
