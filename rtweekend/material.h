@@ -428,6 +428,43 @@ class metal_roughness : public material {
     double metallic_, roughness_;
 };
 
+// A material with a tangent-space normal map (glTF's normalTexture): the texture's colour c at the
+// hit, read as the normal n = 2 c - 1 in the frame of the surface's dp/du, dp/dv and normal (x and
+// y times `scale`), replaces the shading normal, so that a flat triangle shades as the detail the
+// map holds. The map holds data, not colour: read its picture with rtw_image::as_data(). The
+// renderer applies it on triangles with texture coordinates (scene/surface_coordinates.h:
+// shading_normal_at); the book's scatter() and emitted() are the base material's, unperturbed.
+//
+//   auto bumpy = make_shared<normal_mapped>(make_shared<metal_roughness>(gold, 1.0, 0.3), normals);
+class normal_mapped : public material {
+  public:
+    normal_mapped(std::shared_ptr<material> base, std::shared_ptr<texture> normals, double scale = 1)
+        : base_(std::move(base)), normals_(std::move(normals)), scale_(scale) {}
+
+    color emitted(double u, double v, const point3& p) const override { return base_->emitted(u, v, p); }
+    color emitted(const ray& r_in, const hit_record& rec, double u, double v, const point3& p) const override {
+        return base_->emitted(r_in, rec, u, v, p);
+    }
+    bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
+        return base_->scatter(r_in, rec, attenuation, scattered);
+    }
+    bool scatter(const ray& r_in, const hit_record& rec, scatter_record& srec) const override {
+        return base_->scatter(r_in, rec, srec);
+    }
+    double scattering_pdf(const ray& r_in, const hit_record& rec, const ray& scattered) const override {
+        return base_->scattering_pdf(r_in, rec, scattered);
+    }
+
+    const std::shared_ptr<material>& base() const { return base_; }
+    const std::shared_ptr<texture>& normals() const { return normals_; }
+    double scale() const { return scale_; }
+
+  private:
+    std::shared_ptr<material> base_;
+    std::shared_ptr<texture> normals_;
+    double scale_;
+};
+
 // An emitter (books 2 and 3). Book 3's light emits from its front face only (the side its
 // shape's normal points to: a quad's cross(u, v)); book 2's from both, which two_sided = true
 // keeps. It scatters nothing (material's scatter() defaults).
@@ -580,6 +617,7 @@ using rt::material;
 using rt::metal;
 using rt::plastic;
 using rt::metal_roughness;
+using rt::normal_mapped;
 using rt::rough_conductor;
 using rt::rough_dielectric;
 using rt::scatter_record;

@@ -69,12 +69,25 @@ class rtw_image {
     rgb linear(int x, int y) const;
     const std::shared_ptr<const std::vector<float>>& linear_pixels() const { return linear_; }
     const std::string& path() const { return path_; }
+    // A copy whose linear values are the 8-bit codes / 255, not sRGB-decoded: for pictures that
+    // hold data (a normal map, metallic and roughness) rather than colour. A Radiance HDR picture,
+    // linear already, is copied as it is.
+    rtw_image as_data() const {
+        rtw_image copy = *this;
+        if (!hdr_ && !bytes_.empty()) {
+            auto values = std::make_shared<std::vector<float>>(bytes_.size()); // -> shared_ptr<const ...>
+            for (size_t i = 0; i < bytes_.size(); ++i) (*values)[i] = bytes_[i] / 255.0f;
+            copy.linear_ = std::move(values);
+        }
+        return copy;
+    }
 
   private:
     int width_ = 0, height_ = 0;
     std::vector<unsigned char> bytes_;               // sRGB-encoded RGB, 3 per pixel
     std::shared_ptr<const std::vector<float>> linear_; // linear RGB, 3 per pixel
     std::string path_;                               // where it was read from
+    bool hdr_ = false;                               // decoded from Radiance HDR: linear_ is the file's
 
     static int clamp_index(int i, int n) { return i < 0 ? 0 : i < n ? i : n - 1; }
 };
@@ -244,6 +257,7 @@ inline void rtw_image::decode(const std::string& encoded, const std::string& fil
     }
     width_ = w;
     height_ = h;
+    hdr_ = hdr;
     bytes_ = std::move(bytes);
     linear_ = std::make_shared<const std::vector<float>>(std::move(lin));
     path_ = filename;

@@ -9,7 +9,9 @@
 #include <rtweekend/io/gltf_model.h>
 #include <rtweekend/io/model_scene.h>
 #include <rtweekend/image/image_write.h>
+#include <rtweekend/render/guides.h>
 #include <rtweekend/rtweekend.h>
+#include <rtweekend/scene/scene_compiler.h>
 
 #include <doctest/doctest.h>
 
@@ -313,6 +315,37 @@ TEST_CASE("glTF models: an emitter's radiance, its texture's texels the glTF way
     }
 }
 
+TEST_CASE("glTF models: a normal texture tilts the shading normal the glTF way up") {
+    // One texel, normal (0, 0.5, 0.87) in (x right, y up the picture, z out): tilted towards the
+    // top of the picture, which the square's texture coordinates put at +y. Read as data (not
+    // sRGB): green 191 is 2 191 / 255 - 1 = 0.498.
+    const std::string png = encode_8bit_image("n.png", 1, 1, {128, 191, 237});
+    const std::string rest = R"("materials":[{"normalTexture":{"index":0,"scale":1}}],"textures":[{"source":0}],)"
+                             R"("images":[{"uri":"data:image/png;base64,)" + base64(png) + R"("}],)" + one_node;
+    const gltf_model m = decode_gltf_model(gltf_text(rest), "n.gltf");
+    const auto* mesh = dynamic_cast<const triangle_mesh*>(m.world.objects.at(0).get());
+    REQUIRE(mesh);
+    const auto* mapped = dynamic_cast<const normal_mapped*>(mesh->mat.get());
+    REQUIRE(mapped);
+    CHECK(dynamic_cast<const metal_roughness*>(mapped->base().get()));
+    CHECK(m.warnings.empty());
+    camera cam = test::test_camera(5, 5, 1, 4);
+    cam.lookfrom = point3(0, 0, 10);
+    cam.lookat = point3(0, 0, 0);
+    cam.vfov = 5;
+    const camera_frame frame = cam.frame();
+    hittable_list world;
+    world.add(std::make_shared<hittable_list>(m.world));
+    const compiled_scene scene = compile_scene(world, frame.position, {});
+    render_settings s;
+    s.samples_per_pixel = 1;
+    const color n = render_guides(scene, frame, cam.sky(), s).normal.pixel(2, 2);
+    const double y = 2 * 191 / 255.0 - 1, x = 2 * 128 / 255.0 - 1, z = 2 * 237 / 255.0 - 1, len = std::sqrt(x * x + y * y + z * z);
+    CHECK(n.x() == doctest::Approx(x / len).epsilon(1e-4));
+    CHECK(n.y() == doctest::Approx(y / len).epsilon(1e-4));
+    CHECK(n.z() == doctest::Approx(z / len).epsilon(1e-4));
+}
+
 TEST_CASE("glTF models: a glTF and the same scene as a text scene give the same image") {
     test::scratch_dir dir("gltf_twin");
     // The square in metal_roughness, a point light and a camera, both ways.
@@ -370,17 +403,17 @@ TEST_CASE("glTF models: a GLB holds the same model as its .gltf") {
 }
 
 TEST_CASE("glTF models: one warning for what is not rendered as written, one error line for a malformed file") {
-    { // Warnings: a normal map, alphaMode BLEND, an unsupported extension, a picture that is missing.
+    { // Warnings: alphaMode BLEND, an unsupported extension, a picture that is missing.
         const std::string rest = R"("materials":[{"normalTexture":{"index":0},"alphaMode":"BLEND","pbrMetallicRoughness":)"
                                  R"({"baseColorTexture":{"index":0}}}],"textures":[{"source":0}],"images":[{"uri":"nowhere.png"}],)"
                                  R"("extensionsUsed":["KHR_materials_sheen"],)" + one_node;
         const gltf_model m = decode_gltf_model(gltf_text(rest), "w.gltf");
-        CHECK(contains(m.warnings, "w.gltf: material 0: its normal map is not supported yet and is ignored"));
         CHECK(contains(m.warnings, "alphaMode BLEND is not supported: the surface is opaque"));
         CHECK(contains(m.warnings, "the glTF extension KHR_materials_sheen is not supported and is ignored"));
         CHECK(contains(m.warnings, "nowhere.png"));
+        // The normal map's picture is missing too: no normal_mapped, the factor kept.
         REQUIRE(material_of<metal_roughness>(m, 0));
-        CHECK(material_of<metal_roughness>(m, 0)->base_colour().x() == 1); // the factor, kept
+        CHECK(material_of<metal_roughness>(m, 0)->base_colour().x() == 1);
     }
     auto fails = [](const std::string& text, const std::string& fragment) {
         test::check_scene_error([&] { decode_gltf_model(text, "bad.gltf"); }, {"bad.gltf", fragment});

@@ -210,3 +210,23 @@ TEST_CASE("scene files: mesh file.obj mtl keeps the model's materials") {
 }
 
 } // namespace test_obj_model
+
+namespace test_obj_model {
+
+TEST_CASE("OBJ models: a norm normal map makes the material normal_mapped, a missing one warns") {
+    test::scratch_dir dir("obj_norm");
+    dir.write("n.png", rt::encode_8bit_image(dir.file("n.png"), 1, 1, {128, 191, 237}));
+    dir.write("n.mtl", "newmtl a\nKd 0.5 0.5 0.5\nnorm n.png\nnewmtl b\nKd 0.5 0.5 0.5\nnorm gone.png\n");
+    const rt::obj_model m = rt::load_obj_model(dir.write("n.obj", "mtllib n.mtl\nusemtl a\n" + square(0, 1) + "usemtl b\n" + square(2, 5)));
+    const auto* mapped = material_of<rt::normal_mapped>(m, 0);
+    REQUIRE(mapped);
+    CHECK(dynamic_cast<const rt::lambertian*>(mapped->base().get()));
+    // Read as data: green 191 is 191 / 255, not sRGB-decoded.
+    CHECK(mapped->normals()->value(0.5, 0.5, rt::point3(0, 0, 0)).y() == doctest::Approx(191 / 255.0).epsilon(1e-6));
+    CHECK(material_of<rt::lambertian>(m, 1));
+    bool warned = false;
+    for (const std::string& w : m.warnings) warned = warned || w.find("normal map 'gone.png' not found; the faces are flat") != std::string::npos;
+    CHECK(warned);
+}
+
+} // namespace test_obj_model

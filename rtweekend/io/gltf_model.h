@@ -27,9 +27,11 @@
 //   otherwise
 //       metal_roughness(baseColorFactor * baseColorTexture, metallicFactor, roughnessFactor)
 // Pictures are read with their sampler: repeated, mirrored or clamped, bilinear unless the sampler
-// asks for the nearest pixel. The occlusion texture is not needed by a path tracer, which traces
-// the occlusion it stands for. What is not rendered as written is one warning each (normal maps,
-// per-texel metallic and roughness, spot and directional lights, alpha, animation, ...).
+// asks for the nearest pixel. A normalTexture makes the material normal_mapped (its frame from
+// the texture coordinates, per triangle: TANGENT is not read). The occlusion texture is not needed
+// by a path tracer, which traces the occlusion it stands for. What is not rendered as written is
+// one warning each (per-texel metallic and roughness, spot and directional lights, alpha,
+// animation, ...).
 // A malformed file (broken JSON, an index or accessor out of range, a non-finite position) is a
 // scene_error naming the file and the element.
 
@@ -403,15 +405,21 @@ class gltf_reader {
     }
     std::map<int, std::unique_ptr<rtw_image>> pictures_;
 
-    std::shared_ptr<texture> textured(const tinygltf::TextureInfo& info, const std::string& where, const color& factor) {
-        if (info.index < 0) return nullptr;
-        if (info.texCoord != 0) warn(where + ": TEXCOORD_" + std::to_string(info.texCoord) + " is not supported: TEXCOORD_0 is used");
-        if (info.extensions.count("KHR_texture_transform")) warn(where + ": KHR_texture_transform is not supported and is ignored");
+    // The texture `index` names as a colour (sRGB pictures decoded to linear), or as data (the
+    // 8-bit codes / 255: normal maps) when `data`.
+    std::shared_ptr<texture> textured(int index, int tex_coord, const tinygltf::ExtensionMap& extensions, const std::string& where,
+                                      const color& factor, bool data = false) {
+        if (index < 0) return nullptr;
+        if (tex_coord != 0) warn(where + ": TEXCOORD_" + std::to_string(tex_coord) + " is not supported: TEXCOORD_0 is used");
+        if (extensions.count("KHR_texture_transform")) warn(where + ": KHR_texture_transform is not supported and is ignored");
         image_sampling s;
-        const rtw_image* img = picture(info.index, where, s);
+        const rtw_image* img = picture(index, where, s);
         if (!img) return nullptr;
         s.factor = factor;
-        return std::make_shared<image_texture>(*img, s);
+        return std::make_shared<image_texture>(data ? img->as_data() : *img, s);
+    }
+    std::shared_ptr<texture> textured(const tinygltf::TextureInfo& info, const std::string& where, const color& factor) {
+        return textured(info.index, info.texCoord, info.extensions, where, factor);
     }
 
     color factor3(const std::vector<double>& f, size_t n, const std::string& where, const char* what) const {
@@ -435,7 +443,14 @@ class gltf_reader {
         auto found = materials_.find(index);
         if (found != materials_.end()) return found->second;
         const tinygltf::Material& mat = at(m_.materials, index, "material", "a primitive");
-        auto made = material_from_gltf(mat, "material " + std::to_string(index) + (mat.name.empty() ? "" : " ('" + token_text(mat.name) + "')"));
+        const std::string where = "material " + std::to_string(index) + (mat.name.empty() ? "" : " ('" + token_text(mat.name) + "')");
+        std::shared_ptr<material> made = material_from_gltf(mat, where);
+        const auto& nt = mat.normalTexture;
+        if (nt.index >= 0) {
+            if (!std::isfinite(nt.scale)) fail(where + ": the normal texture's scale must be finite");
+            if (auto normals = textured(nt.index, nt.texCoord, nt.extensions, where + " normalTexture", color(1, 1, 1), true))
+                made = std::make_shared<normal_mapped>(made, normals, nt.scale);
+        }
         materials_[index] = made;
         return made;
     }
@@ -450,7 +465,6 @@ class gltf_reader {
         if (!(std::isfinite(strength) && strength >= 0)) fail(where + ": emissiveStrength must be finite and non-negative");
         const color emissive = strength * factor3(mat.emissiveFactor, 3, where, "emissiveFactor");
 
-        if (mat.normalTexture.index >= 0) warn(where + ": its normal map is not supported yet and is ignored");
         if (!(alpha >= 0 && alpha <= 1)) fail(where + ": the alpha of baseColorFactor must be in [0, 1], got " + number_text(alpha));
         if (mat.alphaMode != "OPAQUE") warn(where + ": alphaMode " + token_text(mat.alphaMode) + " is not supported: the surface is opaque");
         for (const auto& e : mat.extensions)
@@ -563,7 +577,6 @@ class gltf_reader {
             for (size_t i = 0; i < count; ++i) mesh->uvs[i] = {t[2 * i], 1 - t[2 * i + 1]};
             mesh->face_uvs = mesh->faces;
         }
-        if (p.attributes.count("TANGENT")) warn(where + ": TANGENT is read by normal maps only, which are not supported yet");
         mesh->mat = material_at(p.material);
         return mesh;
     }

@@ -18,9 +18,10 @@
 //   map_Kd                          lambertian with that image (relative to the MTL file)
 //   Ks above 0                      blinn_phong(Kd, Ks, Ns)
 //   otherwise                       lambertian(Kd)
+// A `norm` normal map (tangent space, +y up the picture) makes the material normal_mapped.
 // Faces without a material are grey (lambertian 0.8). Faces with normals (`vn`) are shaded
 // smooth with them, as model viewers do. What is not rendered as written is one
-// warning each: a missing library or texture (the face keeps Kd), bump and normal maps (not
+// warning each: a missing library or texture (the face keeps Kd), bump (height) maps (not
 // supported yet), the other maps, and a textured material's Ks. A malformed file, a negative or
 // non-finite colour is a scene_error naming the file (and line).
 
@@ -115,9 +116,36 @@ inline color mtl_colour(const tinyobj::real_t (&c)[3], const std::string& where,
     return v;
 }
 
-// The material an MTL entry becomes (the rules at the top of the file).
+inline std::shared_ptr<material> material_from_mtl_colours(const tinyobj::material_t& m, const std::string& mtl_path,
+                                                           obj_model& model);
+
+// The material an MTL entry becomes (the rules at the top of the file), with its `norm` normal map.
 inline std::shared_ptr<material> material_from_mtl(const tinyobj::material_t& m, const std::string& mtl_path,
                                                    obj_model& model) {
+    std::shared_ptr<material> made = material_from_mtl_colours(m, mtl_path, model);
+    if (m.normal_texname.empty()) return made;
+    const std::string where = mtl_path + ": material '" + m.name + "'";
+    const std::string file = model_file(std::filesystem::path(mtl_path).parent_path().string(), m.normal_texname);
+    rtw_image picture;
+    try {
+        if (!picture.load(file)) {
+            model.warnings.push_back(where + ": normal map '" + token_text(m.normal_texname) + "' not found; the faces are flat");
+            return made;
+        }
+    } catch (const scene_error& e) {
+        model.warnings.push_back(where + ": " + e.what() + "; the faces are flat");
+        return made;
+    }
+    model.files.push_back(file);
+    image_sampling s;
+    s.wrap_u = s.wrap_v = image_sampling::wrap_mode::repeat;
+    s.bilinear = true;
+    return std::make_shared<normal_mapped>(made, std::make_shared<image_texture>(picture.as_data(), s));
+}
+
+// The material of an MTL entry's colours and maps (all the rules but `norm`).
+inline std::shared_ptr<material> material_from_mtl_colours(const tinyobj::material_t& m, const std::string& mtl_path,
+                                                           obj_model& model) {
     const std::string where = mtl_path + ": material '" + m.name + "'";
     const std::string dir = std::filesystem::path(mtl_path).parent_path().string();
     const color kd = mtl_colour(m.diffuse, where, "Kd"), ks = mtl_colour(m.specular, where, "Ks");
@@ -126,7 +154,6 @@ inline std::shared_ptr<material> material_from_mtl(const tinyobj::material_t& m,
         if (!file.empty()) model.warnings.push_back(where + ": " + what + " '" + file + "' is not supported yet and is ignored");
     };
     unsupported(m.bump_texname, "bump map");
-    unsupported(m.normal_texname, "normal map");
     unsupported(m.displacement_texname, "displacement map");
     unsupported(m.specular_texname, "map_Ks");
     unsupported(m.specular_highlight_texname, "map_Ns");

@@ -13,7 +13,8 @@
 //             scatters (the mean of its material samples' weights, 16 a pixel in all: exactly a
 //             Lambertian's albedo, a textured one's texel); an emitter's radiance and, for a ray that leaves the
 //             scene, the sky's, each clamped to [0, 1] (as OIDN asks); a user-written material 1
-//   normal    its shading normal, facing the ray, in world space; (0, 0, 0) where the ray leaves
+//   normal    its shading normal (with its material's normal map), facing the ray, in world
+//             space; (0, 0, 0) where the ray leaves
 //   depth     the distance from the camera to the first surface the camera ray hits, delta or not
 //             (all three channels); a pixel none of whose rays hits anything has +infinity
 //   position  that point, in world space; (0, 0, 0) where no ray hits
@@ -94,11 +95,12 @@ inline guide_sample trace_guide(const compiled_scene& scene, const environment& 
         }
         compiled_material m = hit.user_shape ? compile_reported_material(hit.user_record) : scene.materials[hit.material];
         if (m.texture != no_texture) m = textured(scene, m, hit);
-        const shading_point sp{hit.shading_normal, hit.front_face};
+        const vec3f shading_normal = shading_normal_at(scene, hit); // with its normal map, if any
+        const shading_point sp{shading_normal, hit.front_face};
         const vec3f wo = -r.dir;
         if (m.emits() || !m.scatters() || m.is_user()) {
             g.albedo = m.is_user() ? vec3f{1, 1, 1} : clamp_unit(m.emitted(wo, sp));
-            g.normal = hit.shading_normal;
+            g.normal = shading_normal;
             return g;
         }
         if (m.has_delta_lobe() && !m.has_non_delta_lobe() && bounce < max_delta_bounces) {
@@ -113,7 +115,7 @@ inline guide_sample trace_guide(const compiled_scene& scene, const environment& 
             if (m.sample(wo, sp, rng, s) && std::isfinite(s.value.x + s.value.y + s.value.z)) sum += s.value;
         }
         g.albedo = sum * (1.0f / float(albedo_samples));
-        g.normal = hit.shading_normal;
+        g.normal = shading_normal;
         return g;
     }
     return g;

@@ -162,7 +162,11 @@ void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit&
     // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
     // inside it (directions are unit).
     if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
-    const shading_point sp{hit.shading_normal, hit.front_face};
+    // A normal map (compiled_scene::normal_maps) turns the shading normal; a scene without one
+    // pays the test of an empty table.
+    const bool mapped = !scene.normal_maps.empty();
+    const vec3f shading_normal = mapped ? shading_normal_at(scene, hit) : hit.shading_normal;
+    const shading_point sp{shading_normal, hit.front_face};
     const vec3f wo = -r.dir;
 
     if (m.emits()) {
@@ -191,7 +195,9 @@ void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit&
         radiance += throughput * user->emitted();
         if (!user->scatter()) return finish();
     }
-    const bool smooth = hit.smooth_shaded();
+    const bool smooth = hit.smooth_shaded() || (mapped && !(shading_normal.x == hit.shading_normal.x &&
+                                                            shading_normal.y == hit.shading_normal.y &&
+                                                            shading_normal.z == hit.shading_normal.z));
     const vertex_material<UserMaterials> vm{m, sp, wo, UserMaterials && user ? &*user : nullptr, hit.normal,
                                             smooth && !m.is_phase_function() && !m.density_crosses()};
     const bool has_density = vm.has_density();

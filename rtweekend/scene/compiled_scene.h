@@ -47,6 +47,14 @@ class compiled_scene {
     vec3 origin; // world position that float coordinates are relative to
     std::vector<compiled_material> materials;
     texture_table textures;     // the materials' textures (compiled_material::texture indexes it)
+    // Tangent-space normal maps (material.h: normal_mapped), by material index: which texture,
+    // and the scale of its x and y. Empty when no material has one, so a scene without them
+    // pays one test of an empty vector per hit.
+    struct normal_map {
+        uint32_t texture = UINT32_MAX; // UINT32_MAX: none
+        float scale = 1;
+    };
+    std::vector<normal_map> normal_maps;
     // The set of shapes of kind K (shape_kinds.h), in the BVH's leaf order.
     template <class K>
     K& set() { return std::get<K>(sets_); }
@@ -112,6 +120,9 @@ class compiled_scene {
     // (a sphere's from its outward normal, a quad's from its edges, ...); an instance's were found
     // in its object's frame when the hit was completed (surface_hit::has_uv).
     void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
+    // dp/du and dp/dv at a triangle's hit (in the scene's frame, an instance's carried out of its
+    // object's), for normal maps; false for other shapes and for triangles without coordinates.
+    bool surface_tangents(const surface_hit& hit, vec3& dpdu, vec3& dpdv) const;
 
     // Bytes held for tracing: the sets and the BVH nodes.
     size_t geometry_bytes() const;
@@ -257,6 +268,19 @@ RTWEEKEND_ENGINE_FUNCTION void compiled_scene::surface_coordinates(const surface
         return;
     }
     with_shape_kind(hit.kind, [&](auto kind) { set<typename decltype(kind)::type>().surface_coordinates(hit, u, v); });
+}
+
+RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::surface_tangents(const surface_hit& hit, vec3& dpdu, vec3& dpdv) const {
+    if (hit.user_shape) return false;
+    if (hit.kind == shape_id<triangle_set>) return set<triangle_set>().surface_tangents(hit.index, dpdu, dpdv);
+    if (hit.kind != shape_id<instance_set> || hit.object_kind != shape_id<triangle_set>) return false;
+    const instance_set& instances = set<instance_set>();
+    const compiled_scene& object = *objects[instances.object[hit.index]];
+    if (!object.set<triangle_set>().surface_tangents(hit.object_index, dpdu, dpdv)) return false;
+    const affine3f& to_world = instances.to_world[hit.index];
+    dpdu = to_world.vector(vec3f(dpdu)).to_double();
+    dpdv = to_world.vector(vec3f(dpdv)).to_double();
+    return true;
 }
 
 // The user's hittables without a box, in double precision and world coordinates, after the BVH

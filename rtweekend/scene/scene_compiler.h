@@ -261,10 +261,28 @@ class scene_compiler {
         if (root_ != this) return root_->material_index(m); // one table for the scene and its objects
         auto found = index_.find(m);
         if (found != index_.end()) return found->second;
+        // A normal map: the base material compiled as itself, under an index of its own, the map
+        // beside it in the scene's table (compiled_scene::normal_maps).
+        if (const auto* mapped = dynamic_cast<const normal_mapped*>(m)) {
+            if (!mapped->base()) throw scene_error("normal_mapped material has no base material");
+            if (!mapped->normals()) throw scene_error("normal_mapped material has no normal map");
+            if (!std::isfinite(mapped->scale())) throw scene_error("normal_mapped scale must be finite");
+            if (dynamic_cast<const normal_mapped*>(mapped->base().get()))
+                throw scene_error("normal_mapped material's base has a normal map of its own");
+            compiled_material d = compile_material(*mapped->base(), &out_.textures);
+            if (d.is_user()) out_.has_user_materials = true;
+            const auto index = static_cast<uint32_t>(out_.materials.size());
+            out_.materials.push_back(d);
+            out_.normal_maps.resize(out_.materials.size());
+            out_.normal_maps[index] = {out_.textures.add(*mapped->normals()), float(mapped->scale())};
+            index_.emplace(m, index);
+            return index;
+        }
         compiled_material d = compile_material(*m, &out_.textures);
         if (d.is_user()) out_.has_user_materials = true;
         auto index = static_cast<uint32_t>(out_.materials.size());
         out_.materials.push_back(d);
+        if (!out_.normal_maps.empty()) out_.normal_maps.resize(out_.materials.size());
         index_.emplace(m, index);
         return index;
     }
@@ -293,6 +311,7 @@ class scene_compiler {
                 d.edit<rough_dielectric_bsdf>([](rough_dielectric_bsdf& g) { g.refraction_index = 1.0f / g.refraction_index; });
                 index = static_cast<uint32_t>(out_.materials.size());
                 out_.materials.push_back(d);
+                if (!out_.normal_maps.empty()) out_.normal_maps.push_back(out_.normal_maps[right_way_round]);
             }
         } else if (d.is_user() && !is_exactly<isotropic>(*m)) { // a phase function has no faces
             refusal = "a material of the program's own";

@@ -7,6 +7,8 @@
 //                                            the hit: a lambertian's albedo, a light's emission
 //   textured_light_radiance(scene, lc)       the radiance of a textured light at the point a light
 //                                            sample chose (light_set.h)
+//   shading_normal_at(scene, hit)            the hit's shading normal with its material's normal
+//                                            map applied (material.h: normal_mapped), or as it is
 //
 // (u, v) by shape kind (scene/shapes/): a sphere's from its outward normal (book 2's get_sphere_uv:
 // u the angle around the y axis from -x, v from the south pole -y up); a quad's from its edges
@@ -28,6 +30,7 @@ namespace rt {
 void surface_coordinates(const compiled_scene& scene, const surface_hit& hit, double& u, double& v);
 compiled_material textured(const compiled_scene& scene, const compiled_material& m, const surface_hit& hit);
 vec3f textured_light_radiance(const compiled_scene& scene, const light_choice& lc);
+vec3f shading_normal_at(const compiled_scene& scene, const surface_hit& hit);
 
 // --- IMPLEMENTATION -----------------------------------------------------------------------------
 
@@ -56,6 +59,34 @@ inline vec3f textured_light_radiance(const compiled_scene& scene, const light_ch
     at.index = l.shape_index;
     at.kind = l.shape;
     return detail::texture_at(scene, lc.texture, at);
+}
+
+// The normal map's texel c, n = (scale (2 c.x - 1), scale (2 c.y - 1), 2 c.z - 1), in the frame of
+// the outward shading normal N, T = dp/du made perpendicular to N, and B = dp/dv made
+// perpendicular to both (so a mirrored mapping turns B round with it); the result faces the ray
+// as the hit's normals do. Left as it is where the hit has no frame: another shape, no texture
+// coordinates, a degenerate triangle, or a texel that gives no direction.
+inline vec3f shading_normal_at(const compiled_scene& scene, const surface_hit& hit) {
+    if (scene.normal_maps.empty() || hit.user_shape || hit.material >= scene.normal_maps.size()) return hit.shading_normal;
+    const compiled_scene::normal_map& map = scene.normal_maps[hit.material];
+    if (map.texture == UINT32_MAX) return hit.shading_normal;
+    vec3 dpdu, dpdv;
+    if (!scene.surface_tangents(hit, dpdu, dpdv)) return hit.shading_normal;
+    const vec3f c = detail::texture_at(scene, map.texture, hit);
+    const double x = map.scale * (2.0 * c.x - 1), y = map.scale * (2.0 * c.y - 1), z = 2.0 * c.z - 1;
+    const vec3 n = (hit.front_face ? hit.shading_normal : -hit.shading_normal).to_double();
+    vec3 t = dpdu - dot(n, dpdu) * n;
+    const double lt = t.length();
+    if (!(lt > 0)) return hit.shading_normal;
+    t /= lt;
+    vec3 b = dpdv - dot(n, dpdv) * n - dot(t, dpdv) * t;
+    const double lb = b.length();
+    if (!(lb > 0)) return hit.shading_normal;
+    b /= lb;
+    const vec3 m = x * t + y * b + z * n;
+    const double lm = m.length();
+    if (!(lm > 0) || !std::isfinite(lm)) return hit.shading_normal;
+    return vec3f(hit.front_face ? m / lm : -m / lm);
 }
 
 } // namespace rt

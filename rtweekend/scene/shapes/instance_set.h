@@ -250,7 +250,8 @@ void instance_set::complete_hit(const Scene& scene, const ray3f& r, float, uint3
     hit.material = inner.material;
     hit.object_kind = inner.kind;
     hit.object_index = inner.index;
-    if (scene.materials[inner.material].texture != no_texture) {
+    if (scene.materials[inner.material].texture != no_texture ||
+        (inner.material < scene.normal_maps.size() && scene.normal_maps[inner.material].texture != UINT32_MAX)) {
         // Texture coordinates belong to the shape in its own frame (as the book's transforms
         // compute them, hitting the object in its frame): asked of the object now.
         double u, v;

@@ -134,6 +134,10 @@ struct triangle_set {
     // The texture coordinates at the hit point: the vertices' uv weighted by its barycentric
     // coordinates; 0 when the triangles have none (as the book's shapes without coordinates).
     void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
+    // How the point moves with the texture coordinates on triangle i: dp/du and dp/dv, from its
+    // corners and their (u, v). False when the triangles have no coordinates, or triangle i's are
+    // degenerate (all on a line).
+    bool surface_tangents(uint32_t i, vec3& dpdu, vec3& dpdv) const;
 
     // An emitting triangle is light-sampled by area.
     static constexpr bool light_sampled = true;
@@ -361,6 +365,19 @@ void triangle_set::complete_hit(const Scene&, const ray3f& ray, float t, uint32_
     }
     hit.offset = 0; // the barycentric point is within an ulp of the plane; the ray offset suffices
     hit.material = material[i];
+}
+
+inline bool triangle_set::surface_tangents(uint32_t i, vec3& dpdu, vec3& dpdv) const {
+    if (uv[0].empty()) return false;
+    // p - p0 = (u - u0) dp/du + (v - v0) dp/dv across the triangle: two edges, two equations each.
+    const vec3 e1 = corner(1, i) - corner(0, i), e2 = corner(2, i) - corner(0, i);
+    const double du1 = double(uv[2][i]) - uv[0][i], dv1 = double(uv[3][i]) - uv[1][i];
+    const double du2 = double(uv[4][i]) - uv[0][i], dv2 = double(uv[5][i]) - uv[1][i];
+    const double det = du1 * dv2 - du2 * dv1;
+    if (!(std::fabs(det) > 0)) return false;
+    dpdu = (dv2 * e1 - dv1 * e2) / det;
+    dpdv = (du1 * e2 - du2 * e1) / det;
+    return std::isfinite(dpdu.x() + dpdu.y() + dpdu.z() + dpdv.x() + dpdv.y() + dpdv.z());
 }
 
 inline void triangle_set::surface_coordinates(const surface_hit& hit, double& u, double& v) const {

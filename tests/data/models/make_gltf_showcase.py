@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes showcase.glb, the glTF model images/gltf_model.png shows (docs/models.md): a checkered
 floor, three gold spheres from smooth to rough (three meshes sharing one sphere's accessors),
-a glass sphere (KHR_materials_transmission and _ior), a copper block, two blue plastic balls (one mesh placed by two nodes: instances), an emissive
+a glass sphere (KHR_materials_transmission and _ior), a hammered copper block (a normal map), two blue plastic balls (one mesh placed by two nodes: instances), an emissive
 panel overhead (KHR_materials_emissive_strength), a point light (KHR_lights_punctual) and a camera.
 Everything is made here, by this script; it is released with the project.
 
@@ -144,6 +144,16 @@ def showcase(path):
         for x in range(64):
             tex += [200, 196, 186] if ((x // 8) + (y // 8)) % 2 == 0 else [70, 66, 62]
     image_view = g.view(png(64, 64, tex))
+    # A hammered surface for the copper block: a normal map of round dents, 8 across, as data
+    # (x right, y up the picture, z out; each channel 2 c / 255 - 1).
+    dents = []
+    for y in range(64):
+        for x in range(64):
+            fx, fy = (x % 8 + 0.5) / 8 - 0.5, (y % 8 + 0.5) / 8 - 0.5
+            nx, ny = -1.6 * fx, 1.6 * fy
+            nz = math.sqrt(max(0.0, 1 - nx * nx - ny * ny))
+            dents += [int(round(255 * (c + 1) / 2)) for c in (nx, ny, nz)]
+    dents_view = g.view(png(64, 64, dents))
     ball_attrs, ball_idx = g.mesh(*sphere(64, 32))
     floor_attrs, floor_idx = g.mesh([-4, 0, -4, 4, 0, -4, 4, 0, 4, -4, 0, 4], [0, 1, 0] * 4,
                                     [0, 0, 4, 0, 4, 4, 0, 4], [0, 2, 1, 0, 3, 2])
@@ -162,7 +172,8 @@ def showcase(path):
         {"name": "glass", "pbrMetallicRoughness": {"roughnessFactor": 0},
          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.5}}},
         {"name": "copper", "pbrMetallicRoughness": {"baseColorFactor": [0.95, 0.64, 0.54, 1], "metallicFactor": 1,
-                                                    "roughnessFactor": 0.2}},
+                                                    "roughnessFactor": 0.2},
+         "normalTexture": {"index": 1, "scale": 1}},
         {"name": "panel", "emissiveFactor": [1, 0.95, 0.85],
          "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6}}},
         {"name": "blue plastic", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.25, 0.7, 1], "metallicFactor": 0,
@@ -199,9 +210,10 @@ def showcase(path):
         "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
                            "KHR_materials_ior"],
         "buffers": [{"byteLength": 0}], "bufferViews": g.views, "accessors": g.accessors,
-        "images": [{"bufferView": image_view, "mimeType": "image/png"}],
+        "images": [{"bufferView": image_view, "mimeType": "image/png"},
+                   {"bufferView": dents_view, "mimeType": "image/png"}],
         "samplers": [{"magFilter": 9728, "wrapS": 10497, "wrapT": 10497}],
-        "textures": [{"source": 0, "sampler": 0}],
+        "textures": [{"source": 0, "sampler": 0}, {"source": 1}],
         "materials": materials, "meshes": meshes, "nodes": nodes,
         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.62, "znear": 0.05, "aspectRatio": 1.5}}],
         "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0.85, 0.7], "intensity": 6}]}},
