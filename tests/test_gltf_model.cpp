@@ -245,12 +245,17 @@ TEST_CASE("glTF models: the camera and the point lights") {
     CHECK(m.view.vup.y() == doctest::Approx(1));
     CHECK(m.view.vfov == doctest::Approx(0.5 * 180 / pi));
     CHECK(m.view.aspect_ratio == 1.5);
-    REQUIRE(m.point_lights.size() == 1);
+    REQUIRE(m.point_lights.size() >= 1);
     CHECK(m.point_lights[0].position.y() == 3);
     CHECK(m.point_lights[0].intensity.x() == 4);
     CHECK(m.point_lights[0].intensity.y() == 2);
     CHECK(m.point_lights[0].intensity.z() == 1);
-    CHECK(contains(m.warnings, "c.gltf: light 1 is a spot light, which is not supported yet: it is ignored"));
+    REQUIRE(m.point_lights.size() == 2);
+    // The spot at the origin shines down its node's -z; glTF's default cones, 0 and pi / 4.
+    CHECK(m.point_lights[1].spot_direction.z() == -1);
+    CHECK(m.point_lights[1].inner_cone == 0);
+    CHECK(m.point_lights[1].outer_cone == doctest::Approx(pi / 4));
+    CHECK(m.warnings.empty());
 }
 
 TEST_CASE("glTF models: an emitter's radiance, its texture's texels the glTF way up and repeated") {

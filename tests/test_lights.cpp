@@ -22,6 +22,7 @@
 #include "light_scenes.h"
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -326,6 +327,48 @@ TEST_CASE("Russian roulette leaves the mean unchanged: nee with and without it a
     cam.settings.estimator = path_estimator::bsdf;
     render_result r_bsdf = test::render_checked(cam, world);
     check_mean(r_bsdf.img, expected, "bsdf (no roulette)");
+}
+
+} // namespace test_lights
+
+namespace test_lights {
+
+TEST_CASE("spot lights: a Lambertian floor under a spot, inside, between and outside its cones") {
+    // A spot at height 2 shining straight down, inner half-angle 0.2, outer 0.4, intensity 8, over
+    // a floor of albedo 0.5. A point of the floor at angle theta from the axis gets irradiance
+    // E = I a^2 cos^3 theta / 4 (distance 2 / cos theta), a = clamp((cos theta - cos 0.4) /
+    // (cos 0.2 - cos 0.4), 0, 1), and sends L = (0.5 / pi) E up to a camera straight above it.
+    auto mat = std::make_shared<rt::lambertian>(rt::color(0.5, 0.5, 0.5));
+    rt::hittable_list world;
+    world.add(std::make_shared<rt::quad>(rt::point3(-10, -10, 0), rt::vec3(20, 0, 0), rt::vec3(0, 20, 0), mat));
+    rt::point_light spot{rt::point3(0, 0, 2), rt::color(8, 8, 8)};
+    spot.spot_direction = rt::vec3(0, 0, -1);
+    spot.inner_cone = 0.2;
+    spot.outer_cone = 0.4;
+    auto seen_at = [&](double theta) {
+        const double x = 2 * std::tan(theta);
+        rt::camera cam = test::test_camera(3, 3, 4, 2);
+        cam.lookfrom = rt::point3(x, 0.0001, 30);
+        cam.lookat = rt::point3(x, 0, 0);
+        cam.vfov = 0.01;
+        cam.background = rt::color(0, 0, 0);
+        return rt::render(cam, world, {spot}).img.pixel(1, 1).x();
+    };
+    auto expected = [](double theta) {
+        const double a = std::clamp((std::cos(theta) - std::cos(0.4)) / (std::cos(0.2) - std::cos(0.4)), 0.0, 1.0);
+        const double c = std::cos(theta);
+        return 0.5 / rt::pi * 8 * a * a * c * c * c / 4;
+    };
+    for (double theta : {0.0, 0.1, 0.25, 0.3, 0.35}) {
+        CAPTURE(theta);
+        CHECK(seen_at(theta) == doctest::Approx(expected(theta)).epsilon(2e-3));
+    }
+    CHECK(seen_at(0.5) == 0); // past the outer cone
+    // A spot light's cones are checked: inner above outer is one error line.
+    rt::point_light bad = spot;
+    bad.inner_cone = 0.5;
+    rt::camera cam = test::test_camera(2, 2, 1, 1);
+    test::check_scene_error([&] { rt::render(cam, world, {bad}); }, {"spot light cones"});
 }
 
 } // namespace test_lights

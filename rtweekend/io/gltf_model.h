@@ -17,8 +17,9 @@
 //                    one node is baked into world space, one placed by several nodes is shared, each
 //                    placement a transform of it (an instance)
 //   a camera         the first perspective camera met: gltf_model::view
-//   a light          KHR_lights_punctual's point lights: a point_light of intensity colour *
-//                    intensity (candela read as the renderer's W/sr, as glTF viewers light with it)
+//   a light          KHR_lights_punctual's point and spot lights: a point_light of intensity
+//                    colour * intensity (candela read as the renderer's W/sr, as glTF viewers light
+//                    with it), a spot's cone down its node's -z axis
 // A material (material_from_gltf) becomes:
 //   emissive (emissiveFactor * KHR_materials_emissive_strength, times emissiveTexture) above 0
 //       a diffuse_light, two-sided when the material is doubleSided
@@ -294,11 +295,22 @@ class gltf_reader {
         for (int i = 0; i < 3; ++i)
             if (!(std::isfinite(c[i]) && c[i] >= 0)) fail(name + ": its colour must be finite and non-negative");
         if (!(std::isfinite(l.intensity) && l.intensity >= 0)) fail(name + ": its intensity must be finite and non-negative, got " + number_text(l.intensity));
-        if (l.type != "point") {
+        point_light light{world.apply(point3(0, 0, 0)), l.intensity * c};
+        if (l.type == "spot") {
+            // A spot shines down its node's -z axis; glTF's cones: 0 <= inner < outer <= pi / 2.
+            const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+            if (!(inner >= 0 && inner < outer && outer <= pi / 2 + 1e-9))
+                fail(name + ": its cone angles must satisfy 0 <= inner < outer <= pi / 2, got " + number_text(inner) + " and " +
+                     number_text(outer));
+            light.spot_direction = world.linear * vec3(0, 0, -1);
+            if (!(light.spot_direction.length() > 0)) fail(name + ": its node's matrix is singular");
+            light.inner_cone = inner;
+            light.outer_cone = outer;
+        } else if (l.type != "point") {
             warn(name + " is a " + token_text(l.type) + " light, which is not supported yet: it is ignored");
             return;
         }
-        out_.point_lights.push_back({world.apply(point3(0, 0, 0)), l.intensity * c});
+        out_.point_lights.push_back(light);
     }
 
     // --- accessors -----------------------------------------------------------------------------

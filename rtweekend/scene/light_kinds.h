@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 namespace rt {
 
@@ -64,12 +65,16 @@ struct light {
 inline double light::power() const {
     const float mean = (emission.x + emission.y + emission.z) * (1.0f / 3.0f);
     const bool delta = is_delta();
-    const float p = delta ? 4.0f * pi_f * mean : mean * area() * pi_f * (two_sided ? 2.0f : 1.0f);
+    const float share = delta ? visit([](const auto& e) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(e)>, point_emitter>) return e.solid_angle_share();
+        else return 1.0f;
+    }) : 1.0f;
+    const float p = delta ? 4.0f * pi_f * mean * share : mean * area() * pi_f * (two_sided ? 2.0f : 1.0f);
     if (std::isfinite(p)) return p; // float, as always: the same weights, the same images
     // Beyond float's range: the same product in double (a NaN stays NaN, and is refused).
     const double pi_d = 3.14159265358979323846;
     const double mean_d = (double(emission.x) + double(emission.y) + double(emission.z)) / 3.0;
-    if (delta) return 4.0 * pi_d * mean_d;
+    if (delta) return 4.0 * pi_d * mean_d * double(share);
     const double area_d = visit([](const auto& e) { return e.area_in_double(); });
     return mean_d * area_d * pi_d * (two_sided ? 2.0 : 1.0);
 }

@@ -30,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace rt {
@@ -183,7 +184,11 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     if (l.is_delta()) {
         // A point light: its intensity falls off with the squared distance, and no other strategy
         // can find its direction.
-        s.radiance = l.emission / length_squared(ls.y - p);
+        const float spot = l.visit([&](const auto& e) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(e)>, point_emitter>) return e.falloff(-ls.wi);
+            else return 1.0f;
+        });
+        s.radiance = l.emission * (spot / length_squared(ls.y - p));
         s.pdf = pmf;
         s.delta = true;
         return true;

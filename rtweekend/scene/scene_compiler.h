@@ -551,8 +551,21 @@ RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, co
     for (const point_light& p : point_lights) {
         if (!finite3(p.position)) throw scene_error("point light position must be finite, got " + point_text(p.position));
         check_color(p.intensity, "point light intensity");
+        const double inner = p.inner_cone, outer = p.outer_cone;
+        const double axis_length = p.spot_direction.length();
+        if (!std::isfinite(axis_length)) throw scene_error("spot light direction must be finite, got " + point_text(p.spot_direction));
+        point_emitter e{vec3f(p.position - origin)};
+        if (axis_length > 0) {
+            if (!(inner >= 0 && inner <= outer && outer > 0 && outer <= pi))
+                throw scene_error("spot light cones must satisfy 0 <= inner <= outer <= pi, outer > 0, got " +
+                                  number_text(inner) + " and " + number_text(outer));
+            e.axis = vec3f(p.spot_direction / axis_length);
+            e.cos_outer = float(std::cos(outer));
+            // glTF's guard against a zero-width cone: at most 1000.
+            e.inv_cone_width = float(1.0 / std::max(1e-3, std::cos(inner) - std::cos(outer)));
+        }
         light l;
-        l.emitter = point_emitter{vec3f(p.position - origin)};
+        l.emitter = e;
         l.emission = vec3f(p.intensity);
         scene.lights.add(l);
     }

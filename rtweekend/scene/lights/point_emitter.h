@@ -11,6 +11,23 @@ namespace rt {
 
 struct point_emitter {
     vec3f position; // relative to the scene origin
+    // A spot light's cone (point_light.h): the unit axis (zero: no cone), the cosines of the outer
+    // half-angle and 1 / (cos inner - cos outer).
+    vec3f axis{0, 0, 0};
+    float cos_outer = -1, inv_cone_width = 0;
+
+    // The share of the intensity sent along the unit direction d (from the light): 1 without a
+    // cone; a^2 with a = clamp((d . axis - cos outer) / (cos inner - cos outer), 0, 1) with one.
+    float falloff(const vec3f& d) const {
+        if (axis.x == 0 && axis.y == 0 && axis.z == 0) return 1;
+        const float a = fmin_inline(fmax_inline((dot(d, axis) - cos_outer) * inv_cone_width, 0.0f), 1.0f);
+        return a * a;
+    }
+    // The fraction of the sphere the light shines into (for its power): the outer cone's.
+    float solid_angle_share() const {
+        if (axis.x == 0 && axis.y == 0 && axis.z == 0) return 1;
+        return 0.5f * (1.0f - cos_outer);
+    }
 
     static constexpr bool is_delta = true;
     float area() const { return 0; }
@@ -39,7 +56,7 @@ struct point_emitter {
         const auto [u1, u2] = draw_2d(u);
         r.origin = position;
         r.dir = sample_unit_sphere(u1, u2);
-        throughput = emission * (4.0f * pi_f / pmf);
+        throughput = emission * (4.0f * pi_f * falloff(r.dir) / pmf);
     }
 };
 
