@@ -441,6 +441,11 @@ TEST_CASE("glTF models: one warning for what is not rendered as written, one err
     fails(gltf_text(R"("materials":[{}],"meshes":[)" + square_mesh + R"(],"nodes":[{"mesh":3}],"scenes":[{"nodes":[0]}])"),
           "node 0 names mesh 3, of 1");
     fails(gltf_text(R"("materials":[{"pbrMetallicRoughness":{"metallicFactor":2}}],)" + one_node), "metallicFactor must be in [0, 1]");
+    // Found by the gltf fuzzer: an emissive factor of 1.2e71 made a light of infinite power in float.
+    fails(gltf_text(R"("materials":[{"emissiveFactor":[1,1,1.2e71]}],)" + one_node),
+          "emissiveFactor is too large for single precision");
+    fails(gltf_text(R"("materials":[{"emissiveFactor":[1,1,1e30],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":1e10}}}],)" + one_node),
+          "emissiveFactor times emissiveStrength is too large for single precision");
     fails(gltf_text(R"("materials":[{}],"meshes":[)" + square_mesh + R"(],"nodes":[{"mesh":0,"scale":[0,1,1]}],"scenes":[{"nodes":[0]}])"),
           "placed by a singular matrix");
     test::check_one_line_error([] { load_gltf_model("/nonexistent/model.glb"); }, "/nonexistent/model.glb", "cannot open");

@@ -439,6 +439,7 @@ class gltf_reader {
         const color c(f[0], f[1], f[2]);
         for (int i = 0; i < 3; ++i)
             if (!(std::isfinite(c[i]) && c[i] >= 0)) fail(where + ": " + what + " must be finite and non-negative");
+        if (!is_finite(vec3f(c))) fail(where + ": " + what + " is too large for single precision");
         return c;
     }
     double unit(double x, const std::string& where, const char* what) const {
@@ -476,6 +477,8 @@ class gltf_reader {
         const double strength = ext_number(mat.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0);
         if (!(std::isfinite(strength) && strength >= 0)) fail(where + ": emissiveStrength must be finite and non-negative");
         const color emissive = strength * factor3(mat.emissiveFactor, 3, where, "emissiveFactor");
+        if (!is_finite(vec3f(emissive)))
+            fail(where + ": emissiveFactor times emissiveStrength is too large for single precision");
 
         if (!(alpha >= 0 && alpha <= 1)) fail(where + ": the alpha of baseColorFactor must be in [0, 1], got " + number_text(alpha));
         if (mat.alphaMode != "OPAQUE") warn(where + ": alphaMode " + token_text(mat.alphaMode) + " is not supported: the surface is opaque");

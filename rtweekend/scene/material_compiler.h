@@ -77,6 +77,7 @@ inline compiled_material compile_book(const diffuse_light& d, texture_table* tex
         // light's power for light selection (find_lights); the radiance itself is looked up where
         // the light is hit or sampled.
         const float mean = textures->average(c.texture);
+        if (!std::isfinite(mean)) throw scene_error("diffuse_light texture's mean emission is too large for single precision");
         return c.with_colour(vec3f{mean, mean, mean});
     }
     check_color(d.emission(), "diffuse_light emission");

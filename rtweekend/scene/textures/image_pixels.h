@@ -8,6 +8,7 @@
 #include "../../texture.h"
 #include "../../vec3.h"
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct image_pixels {
     template <class Table>
     static image_pixels compile(const image_texture& image, Table&) {
         if (!image.load_error().empty()) throw scene_error(image.load_error());
+        const color& f = image.sampling().factor;
+        if (!(std::isfinite(f.x()) && std::isfinite(f.y()) && std::isfinite(f.z()) && f.x() >= 0 && f.y() >= 0 && f.z() >= 0) ||
+            !is_finite(vec3f(f)))
+            throw scene_error("image texture factor must be finite and non-negative in single precision");
         const rtw_image& img = image.image();
         return {img.linear_pixels(), img.width(), img.height(), image.sampling().is_books(), image.sampling()};
     }
