@@ -128,7 +128,7 @@ void* AB_FUNCTION(_load_scene)(const char* path, int width, int spp, char* error
 // rendered, as render reports them), and a checksum of the image's bits (FNV-1a of its floats).
 double AB_FUNCTION(_render)(void* workload, uint64_t* checksum) {
     auto& w = *static_cast<scene_workload*>(workload);
-    const rt::render_result r = rt::render(w.scene.cam, w.scene.world, w.scene.point_lights);
+    const rt::render_result r = rt::render(w.scene.cam, w.scene.world, w.scene.point_lights, w.scene.directional_lights);
     uint64_t h = 1469598103934665603ull;
     for (int y = 0; y < r.img.height(); ++y)
         for (int x = 0; x < r.img.width(); ++x) {

@@ -216,7 +216,7 @@ void bench_scene(const bench_options& o) {
     cam.settings.quiet = true;
 
     auto compile_start = std::chrono::steady_clock::now();
-    rt::compiled_scene compiled = rt::compile_scene(s.world, cam.lookfrom, s.point_lights);
+    rt::compiled_scene compiled = rt::compile_scene(s.world, cam.lookfrom, s.point_lights, s.directional_lights);
     double compile_s = seconds_since(compile_start);
     const rt::bvh_stats& bs = compiled.bvh.stats;
     std::printf("scene %s: %zu spheres, %zu triangles, %zu quads, %zu lights; BVH built in %.2f ms (scene compiled in %.2f ms): "
@@ -228,7 +228,7 @@ void bench_scene(const bench_options& o) {
     std::vector<double> seconds, mrays;
     uint64_t rays = 0;
     for (int run = 0; run < o.runs; ++run) {
-        rt::render_result r = rt::render(cam, s.world, s.point_lights);
+        rt::render_result r = rt::render(cam, s.world, s.point_lights, s.directional_lights);
         seconds.push_back(r.stats.seconds);
         mrays.push_back(r.stats.mrays_per_second());
         rays = r.stats.rays;
@@ -522,7 +522,7 @@ void bench_error(const bench_options& o) {
                 if (p.mode == rt::estimator_name(e)) cam.settings.estimator = e;
             for (rt::sampler_kind k : o.samplers)
                 if (p.mode == rt::sampler_name(k)) cam.settings.sampler = k;
-            rt::render_result r = rt::render(cam, s.world, s.point_lights);
+            rt::render_result r = rt::render(cam, s.world, s.point_lights, s.directional_lights);
             seconds[i].push_back(r.stats.seconds);
             p.seconds = median(seconds[i]);
             p.rays = r.stats.rays;

@@ -160,6 +160,12 @@ inline std::vector<rt::point_light> xml_path_lights(const rt::whitted_scene& sce
     for (rt::point_light& l : lights) l.intensity *= rt::pi;
     return lights;
 }
+// The same for directional lights: E cos kd in the course's shading, E pi cos kd / pi here.
+inline std::vector<rt::directional_light> xml_path_directional_lights(const rt::whitted_scene& scene) {
+    std::vector<rt::directional_light> lights = scene.directional_lights;
+    for (rt::directional_light& l : lights) l.irradiance *= rt::pi;
+    return lights;
+}
 
 inline rt::render_settings whitted_settings(const options& opt) {
     rt::render_settings settings = rt::whitted_renderer::defaults();
@@ -238,10 +244,10 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     // What the path tracer does not take from a course scene yet: the lights of homeworks 3 and 5
     // and the texture maps of homework 4 are refused (an image without them would be wrong), the cameras' distribution settings are
     // named in a warning (--spp replaces NumSamples; no lens).
-    if (!scene.directional_lights.empty() || !scene.spot_lights.empty() || !scene.area_lights.empty() ||
-        !scene.light_meshes.empty() || !scene.light_spheres.empty() || !scene.environment_lights.empty())
-        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's directional, "
-                              "spot, area, object or environment lights yet: render this scene in Whitted mode (without --integrator)");
+    if (!scene.spot_lights.empty() || !scene.area_lights.empty() || !scene.light_meshes.empty() ||
+        !scene.light_spheres.empty() || !scene.environment_lights.empty())
+        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's spot, area, object "
+                              "or environment lights yet: render this scene in Whitted mode (without --integrator)");
     if (!scene.textured_objects.empty() || scene.background_texture)
         throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's texture maps yet: "
                               "render this scene in Whitted mode (without --integrator)");
@@ -256,7 +262,8 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     settings.stop = &interrupt_requested;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
     // One compiled scene for every camera, around the first (as the Whitted integrator's).
-    const rt::compiled_scene compiled = rt::compile_scene(scene.world, scene.cameras[0].position, xml_path_lights(scene));
+    const rt::compiled_scene compiled = rt::compile_scene(scene.world, scene.cameras[0].position, xml_path_lights(scene),
+                                                          xml_path_directional_lights(scene));
     const size_t cameras = scene.cameras.size();
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);
@@ -434,7 +441,7 @@ inline std::vector<std::string> write_guides(const options& opt, const rt::guide
 inline void render_text_scene(const options& opt, const rt::scene_description& scene) {
     if (!opt.aovs.empty()) {
         const rt::camera_frame frame = scene.cam.frame();
-        const rt::compiled_scene compiled = rt::compile_scene(scene.world, frame.position, scene.point_lights);
+        const rt::compiled_scene compiled = rt::compile_scene(scene.world, frame.position, scene.point_lights, scene.directional_lights);
         const rt::render_settings settings = text_scene_settings(opt, scene.cam);
         const auto start = std::chrono::steady_clock::now();
         const rt::guide_images g = rt::render_guides(compiled, frame, scene.cam.sky(), settings);
@@ -453,17 +460,18 @@ inline void render_text_scene(const options& opt, const rt::scene_description& s
     }
     if (opt.time_budget || opt.preview) {
         const rt::camera_frame frame = scene.cam.frame();
-        write_output(opt, render_in_passes(opt, scene, rt::compile_scene(scene.world, frame.position, scene.point_lights)));
+        write_output(opt, render_in_passes(opt, scene, rt::compile_scene(scene.world, frame.position, scene.point_lights, scene.directional_lights)));
         return;
     }
     if (!opt.samples) {
-        write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights));
+        write_output(opt, rt::render(scene.cam, scene.world, scene.point_lights, scene.directional_lights));
         return;
     }
     // The fingerprint of what was read, taken now: the files could change during a long render.
     const std::string fingerprint = rt::scene_fingerprint(scene.files);
     const rt::render_settings settings = text_scene_settings(opt, scene.cam);
-    rt::render_result r = rt::path_trace(scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights);
+    rt::render_result r = rt::path_trace(scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights,
+                                                 scene.directional_lights);
     write_slice_output(opt, settings, r, fingerprint);
 }
 

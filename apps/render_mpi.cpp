@@ -88,7 +88,8 @@ void render_text(MPI_Comm comm, const app::options& opt, int rank) {
         return app::text_scene_settings(opt, scene.cam);
     });
     const rt::render_result r =
-        rt::mpi::path_trace(comm, scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights);
+        rt::mpi::path_trace(comm, scene.world, scene.cam.frame(), scene.cam.sky(), settings, scene.point_lights,
+                            scene.directional_lights);
     rt::mpi::together(comm, [&] {
         if (rank != 0) return;
         if (opt.samples) rt::write_slice(opt.output, app::make_slice(settings, r, fingerprint, opt.filter.value_or(rt::pixel_filter::box())));
@@ -116,7 +117,8 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
         // One compiled scene for every camera, around the first, as render compiles it (every
         // rank compiles it; a failure anywhere is agreed on).
         const rt::compiled_scene compiled = rt::mpi::together(comm, [&] {
-            return rt::compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene));
+            return rt::compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene),
+                                     app::xml_path_directional_lights(scene));
         });
         for (const rt::view_camera& c : scene.cameras) {
             rt::camera_frame frame = rt::view_camera_frame(c);

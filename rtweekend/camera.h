@@ -25,6 +25,7 @@
 #include "hittable.h"
 #include "image/image_write.h"
 #include "core/input_limits.h"
+#include "directional_light.h"
 #include "point_light.h"
 #include "core/scene_error.h"
 #include "vec3.h"
@@ -284,10 +285,12 @@ inline ray camera::get_ray(double s, double t) const {
     return ray(lookfrom + offset, lower_left_corner + s * horizontal + t * vertical - lookfrom - offset, time);
 }
 
-// Renders `world` as `cam` sees it, with the path tracer (and point lights besides the world's
-// emitters): the image and the statistics. The world is compiled around the camera.
-inline render_result render(const camera& cam, const hittable& world, const std::vector<point_light>& point_lights = {}) {
-    return path_trace(world, cam.frame(), cam.sky(), cam.effective_settings(), point_lights);
+// Renders `world` as `cam` sees it, with the path tracer (and point and directional lights
+// besides the world's emitters): the image and the statistics. The world is compiled around the
+// camera.
+inline render_result render(const camera& cam, const hittable& world, const std::vector<point_light>& point_lights = {},
+                            const std::vector<directional_light>& directional_lights = {}) {
+    return path_trace(world, cam.frame(), cam.sky(), cam.effective_settings(), point_lights, directional_lights);
 }
 
 // Renders a scene compiled once (compile_scene, scene/scene_compiler.h) as `cam` sees it: one

@@ -275,4 +275,30 @@ TEST_CASE("course path tracer: our path tracer sees the same direct light, and 1
     CHECK(course_indirect.error < 0.03 * course_indirect.mean);
 }
 
+TEST_CASE("course path tracer: a directional light on a floor, kd E cos in the course's and in ours") {
+    // Light travelling along (1, -2, 0) over a floor of kd 0.5: cos = 2 / sqrt 5 everywhere, so the
+    // point (1, 0, 0) seen directly is 0.5 x 10 x 0.8944 = 4.472, in the course's path tracer and in
+    // ours with E multiplied by pi (render's xml_path_directional_lights).
+    test::scratch_dir dir("course_path_sun");
+    const whitted_scene scene = load_xml_scene(dir.write(
+        "s.xml", "<Scene><MaxRecursionDepth>0</MaxRecursionDepth>" + camera("1 0.5 0.5", "0 -0.5 -0.5", 4, renderer(true, true, false)) +
+                     "<Lights><DirectionalLight id=\"1\"><Direction>1 -2 0</Direction><Radiance>10 10 10</Radiance>"
+                     "</DirectionalLight></Lights><Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+                     "</Material></Materials><VertexData>-20 0 -20 20 0 -20 20 0 20 -20 0 20</VertexData><Objects>"
+                     "<Mesh id=\"1\"><Material>1</Material><Faces>1 3 2 1 4 3</Faces></Mesh></Objects></Scene>"));
+    REQUIRE(scene.warnings.empty());
+    REQUIRE(scene.directional_lights.size() == 1);
+    const double expected = 0.5 * 10 * 2 / std::sqrt(5.0);
+    CHECK(mean_of(render_whitted(scene, 0).img).mean == doctest::Approx(expected).epsilon(1e-4));
+    std::vector<directional_light> suns = scene.directional_lights;
+    for (directional_light& l : suns) l.irradiance *= pi_d;
+    const compiled_scene compiled = compile_scene(scene.world, scene.cameras[0].position, {}, suns);
+    render_settings settings;
+    settings.samples_per_pixel = 4;
+    settings.max_depth = 1;
+    settings.quiet = true;
+    const image ours = path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img;
+    CHECK(mean_of(ours).mean == doctest::Approx(expected).epsilon(1e-4));
+}
+
 } // namespace test_course_path

@@ -228,14 +228,17 @@ TEST_CASE("glTF models: a mesh placed by two nodes is shared, each placement an 
     CHECK(m.hi.x() == 4);
 }
 
-TEST_CASE("glTF models: the camera and the point lights") {
+TEST_CASE("glTF models: the camera and the lights") {
     // A camera at (0, 1, 4) turned 180 degrees about y (quaternion (0, 1, 0, 0)): it looks along +z.
     const std::string rest = R"("meshes":[)" + square_mesh + R"(],"materials":[{}],"cameras":[{"type":"perspective","perspective":)"
                              R"({"yfov":0.5,"znear":0.1,"aspectRatio":1.5}}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,1,4],)"
                              R"("rotation":[0,1,0,0]},{"translation":[0,3,0],"extensions":{"KHR_lights_punctual":{"light":0}}},)"
-                             R"({"extensions":{"KHR_lights_punctual":{"light":1}}}],"scenes":[{"nodes":[0,1,2,3]}],)"
+                             R"({"extensions":{"KHR_lights_punctual":{"light":1}}},)"
+                             R"({"rotation":[0.5,0.5,0.5,0.5],"extensions":{"KHR_lights_punctual":{"light":2}}}],)"
+                             R"("scenes":[{"nodes":[0,1,2,3,4]}],)"
                              R"("extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[)"
-                             R"({"type":"point","color":[1,0.5,0.25],"intensity":4},{"type":"spot","intensity":2,"spot":{}}]}})";
+                             R"({"type":"point","color":[1,0.5,0.25],"intensity":4},{"type":"spot","intensity":2,"spot":{}},)"
+                             R"({"type":"directional","color":[0.5,1,1],"intensity":3}]}})";
     const gltf_model m = decode_gltf_model(gltf_text(rest), "c.gltf");
     REQUIRE(m.has_view);
     CHECK(m.view.lookfrom.y() == 1);
@@ -255,6 +258,14 @@ TEST_CASE("glTF models: the camera and the point lights") {
     CHECK(m.point_lights[1].spot_direction.z() == -1);
     CHECK(m.point_lights[1].inner_cone == 0);
     CHECK(m.point_lights[1].outer_cone == doctest::Approx(pi / 4));
+    // The sun's node turns by 120 degrees about (1, 1, 1) (quaternion (1, 1, 1, 1) / 2), which
+    // takes x to y, y to z and z to x: its -z axis, the way it shines, becomes -x.
+    REQUIRE(m.directional_lights.size() == 1);
+    CHECK(m.directional_lights[0].direction.x() == doctest::Approx(-1));
+    CHECK(m.directional_lights[0].direction.y() == doctest::Approx(0).epsilon(1e-12));
+    CHECK(m.directional_lights[0].direction.z() == doctest::Approx(0).epsilon(1e-12));
+    CHECK(m.directional_lights[0].irradiance.x() == 1.5);
+    CHECK(m.directional_lights[0].irradiance.y() == 3);
     CHECK(m.warnings.empty());
 }
 
@@ -353,14 +364,17 @@ TEST_CASE("glTF models: a normal texture tilts the shading normal the glTF way u
 
 TEST_CASE("glTF models: a glTF and the same scene as a text scene give the same image") {
     test::scratch_dir dir("gltf_twin");
-    // The square in metal_roughness, a point light and a camera, both ways.
+    // The square in metal_roughness, a point light, a sun shining down -z (no rotation) and a
+    // camera, both ways.
     const double yfov = 0.7;
     const std::string rest = R"("materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,0.125,1],"metallicFactor":0.3,)"
                              R"("roughnessFactor":0.6}}],"meshes":[)" + square_mesh +
                              R"(],"cameras":[{"type":"perspective","perspective":{"yfov":0.7,"znear":0.1}}],)"
                              R"("nodes":[{"mesh":0},{"camera":0,"translation":[0.25,0.5,4]},)"
-                             R"({"translation":[0.5,1,2],"extensions":{"KHR_lights_punctual":{"light":0}}}],"scenes":[{"nodes":[0,1,2]}],)"
-                             R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","color":[1,0.5,0.25],"intensity":8}]}})";
+                             R"({"translation":[0.5,1,2],"extensions":{"KHR_lights_punctual":{"light":0}}},)"
+                             R"({"extensions":{"KHR_lights_punctual":{"light":1}}}],"scenes":[{"nodes":[0,1,2,3]}],)"
+                             R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","color":[1,0.5,0.25],"intensity":8},)"
+                             R"({"type":"directional","color":[0.5,1,1],"intensity":0.5}]}})";
     const std::string gltf = dir.write("twin.gltf", gltf_text(rest));
     dir.write("square.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n");
     char vfov[64];
@@ -368,7 +382,7 @@ TEST_CASE("glTF models: a glTF and the same scene as a text scene give the same 
     const std::string text = dir.write("twin.txt", std::string("camera lookfrom 0.25 0.5 4\ncamera lookat 0.25 0.5 3\ncamera vup 0 1 0\n") +
                                                        "camera vfov_deg " + vfov + "\nbackground 0 0 0\n" +
                                                        "mesh square.obj metal_roughness 0.5 0.25 0.125 0.3 0.6\n" +
-                                                       "point_light 0.5 1 2 8 4 2\n");
+                                                       "point_light 0.5 1 2 8 4 2\ndirectional_light 0 0 -1 0.25 0.5 0.5\n");
     auto render_it = [](scene_description s) {
         const camera view = s.cam;
         s.cam = test::test_camera(24, 18, 8, 4);
@@ -377,7 +391,7 @@ TEST_CASE("glTF models: a glTF and the same scene as a text scene give the same 
         s.cam.vup = view.vup;
         s.cam.vfov = view.vfov;
         s.cam.background = view.background;
-        return render(s.cam, s.world, s.point_lights).img;
+        return render(s.cam, s.world, s.point_lights, s.directional_lights).img;
     };
     const scene_description from_gltf = load_model_scene(gltf);
     CHECK(from_gltf.cam.aspect_ratio == doctest::Approx(4.0 / 3.0));

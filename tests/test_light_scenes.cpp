@@ -58,13 +58,17 @@ TEST_CASE("scene file: quad, box, lights, transforms and background") {
                           "quad 0 0 0  1 0 0  0 1 0 diffuse_light 2 3 4 0 0\n"
                           "quad 0 0 0  1 0 0  0 1 0 two_sided_light 1 1 1 0 0 translate 0 0 -1\n"
                           "box 0 0 0  1 2 3 lambertian 0.5 0.5 0.5 0 0 rotate_y 90 translate 10 0 0\n"
-                          "point_light 1 2 3  40 50 60\n");
+                          "point_light 1 2 3  40 50 60\n"
+                          "directional_light 0 -2 1  3 2 1\n");
     scene_description s = parse_scene(in, "t.txt");
     REQUIRE(s.cam.background.has_value());
     CHECK(s.cam.background->z() == doctest::Approx(0.3));
     REQUIRE(s.point_lights.size() == 1);
     CHECK(s.point_lights[0].position.y() == 2);
     CHECK(s.point_lights[0].intensity.z() == 60);
+    REQUIRE(s.directional_lights.size() == 1);
+    CHECK(s.directional_lights[0].direction.y() == -2);
+    CHECK(s.directional_lights[0].irradiance.x() == 3);
     REQUIRE(s.world.objects.size() == 3);
     auto light = std::dynamic_pointer_cast<quad>(s.world.objects[0]);
     REQUIRE(light);
@@ -82,10 +86,10 @@ TEST_CASE("scene file: quad, box, lights, transforms and background") {
     CHECK(std::fabs(b.z.min + 1) < 1e-4);
     CHECK(std::fabs(b.z.max - 0) < 1e-4);
 
-    // The compiled scene: 2 + 6 quads, two lights on quads and one point light.
-    compiled_scene c = compile_scene(s.world, point3(0, 0, 5), s.point_lights);
+    // The compiled scene: 2 + 6 quads, two lights on quads, one point light and one directional.
+    compiled_scene c = compile_scene(s.world, point3(0, 0, 5), s.point_lights, s.directional_lights);
     CHECK(c.set<quad_set>().count == 8);
-    CHECK(c.lights.lights.size() == 3);
+    CHECK(c.lights.lights.size() == 4);
 }
 
 } // namespace test_light_scenes

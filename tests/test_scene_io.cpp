@@ -220,6 +220,10 @@ TEST_CASE("parse_scene: every malformed line is 'name:LINE: problem'") {
     check_fails("quad 0 0 0 1 0 0 2 0 0 lambertian 0.5 0.5 0.5 0 0\n", 1, {"quad has zero area"});
     check_fails("box 0 0 0 1 0 1 lambertian 0.5 0.5 0.5 0 0\n", 1, {"box corners must differ"});
     check_fails("point_light 0 1 0 1 1\n", 1, {"point_light x y z r g b"});
+    check_fails("directional_light 0 -1 0 1 1\n", 1, {"directional_light dx dy dz r g b"});
+    check_fails("directional_light 0 0 0 1 1 1\n", 1, {"directional light direction must not be zero"});
+    check_fails("directional_light 1e300 1e300 0 1 1 1\n", 1, {"too long"});
+    check_fails("directional_light 0 -1 0 1 -1 1\n", 1, {"irradiance must be non-negative"});
     check_fails("point_light 0 1 0 1 -1 1\n", 1, {"intensity must be non-negative"});
     check_fails("background 0 -1 0\n", 1, {"background must be non-negative"});
     check_fails("sphere 0 0 -1 0.5 light 1 1 1 0 0\n", 1, {"unknown material 'light'"});

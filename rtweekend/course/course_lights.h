@@ -5,8 +5,9 @@
 // towards the light, the distance a shadow ray must cover, and the irradiance E that multiplies
 // the course's bracket (kd max(0, n.l) + ks max(0, n.h)^p):
 //
-//   directional_light  light travelling along `direction`: towards it is -direction, E = radiance
-//                      at any distance, the shadow ray unbounded (homework 5)
+//   directional_light  (directional_light.h, shared with the path tracer) light travelling along
+//                      `direction`: towards it is -direction, E = `irradiance` (the course's
+//                      <Radiance>) at any distance, the shadow ray unbounded (homework 5)
 //   spot_light         a point light whose intensity falls off inside a cone about `direction`:
 //                      E = I s(alpha) / d^2, alpha the angle between direction and x - position,
 //                      s = 1 within half the falloff angle, 0 beyond half the coverage angle, and
@@ -31,6 +32,7 @@
 //                      1 / (2 pi)); rays that leave the scene see L of their direction
 
 #include "../color.h"
+#include "../directional_light.h"
 #include "../core/vec3f.h"
 #include "../image/image.h"
 #include "../transform.h"
@@ -57,11 +59,6 @@ inline void course_frame(const vec3& d, vec3& u, vec3& v) {
     u = unit_vector(cross(d, other));
     v = cross(d, u);
 }
-
-struct directional_light {
-    vec3 direction; // the way the light travels (any length)
-    color radiance;
-};
 
 struct spot_light {
     point3 position;
@@ -124,7 +121,6 @@ struct environment_light {
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::area_light;
-using rt::directional_light;
 using rt::environment_light;
 using rt::light_mesh;
 using rt::light_sphere;

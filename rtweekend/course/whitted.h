@@ -333,11 +333,11 @@ RTWEEKEND_ENGINE_FUNCTION whitted_renderer::whitted_renderer(const whitted_scene
         return unit_vector(d);
     };
     for (const directional_light& l : scene.directional_lights) {
-        check_color(l.radiance, "directional light radiance");
+        check_color(l.irradiance, "directional light radiance");
         light_f f;
         f.kind = light_f::directional;
         f.axis = vec3f(-unit_direction(l.direction, "directional light direction"));
-        f.intensity = vec3f(l.radiance);
+        f.intensity = vec3f(l.irradiance);
         lights_.push_back(f);
     }
     for (const spot_light& l : scene.spot_lights) {

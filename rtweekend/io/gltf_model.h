@@ -1,12 +1,12 @@
 #pragma once
 // load_gltf_model(path): a glTF 2.0 model (`.gltf` with its buffers and images, or one `.glb`),
 // as models are now published, with its materials, its node hierarchy, its first camera and its
-// point lights.
+// lights.
 //
 //   rt::gltf_model m = rt::load_gltf_model("helmet.glb");       // throws scene_error
 //   for (const std::string& w : m.warnings) ...                  // what it could not render as written
 //   world.add(std::make_shared<rt::hittable_list>(m.world));
-//   rt::render(cam, world, m.point_lights);
+//   rt::render(cam, world, m.point_lights, m.directional_lights);
 //
 // tinygltf (Debian's libtinygltf-dev) parses the JSON and the buffers; the pictures are decoded
 // here, as every other texture is (rtw_image::decode). The default scene's nodes are walked from
@@ -19,7 +19,9 @@
 //   a camera         the first perspective camera met: gltf_model::view
 //   a light          KHR_lights_punctual's point and spot lights: a point_light of intensity
 //                    colour * intensity (candela read as the renderer's W/sr, as glTF viewers light
-//                    with it), a spot's cone down its node's -z axis
+//                    with it), a spot's cone down its node's -z axis; directional lights: a
+//                    directional_light shining down its node's -z axis, irradiance colour *
+//                    intensity (lux read as W/m^2)
 // A material (material_from_gltf) becomes:
 //   emissive (emissiveFactor * KHR_materials_emissive_strength, times emissiveTexture) above 0
 //       a diffuse_light, two-sided when the material is doubleSided
@@ -31,13 +33,13 @@
 // asks for the nearest pixel. A normalTexture makes the material normal_mapped (its frame from
 // the texture coordinates, per triangle: TANGENT is not read). The occlusion texture is not needed
 // by a path tracer, which traces the occlusion it stands for. What is not rendered as written is
-// one warning each (per-texel metallic and roughness, spot and directional lights, alpha,
-// animation, ...).
+// one warning each (per-texel metallic and roughness, alpha, animation, ...).
 // A malformed file (broken JSON, an index or accessor out of range, a non-finite position) is a
 // scene_error naming the file and the element.
 
 #include "../core/engine_linkage.h"
 #include "../hittable_list.h"
+#include "../directional_light.h"
 #include "../point_light.h"
 #include "../vec3.h"
 
@@ -49,6 +51,7 @@ namespace rt {
 struct gltf_model {
     hittable_list world;                 // the placed meshes: one triangle_mesh (or instance) per primitive
     std::vector<point_light> point_lights;
+    std::vector<directional_light> directional_lights;
     std::vector<std::string> warnings;   // what was not rendered as written, one line each
     std::vector<std::string> files;      // what was read: the glTF, its buffers and images
     bool emits = false;                  // some material is an emitter
@@ -295,6 +298,12 @@ class gltf_reader {
         for (int i = 0; i < 3; ++i)
             if (!(std::isfinite(c[i]) && c[i] >= 0)) fail(name + ": its colour must be finite and non-negative");
         if (!(std::isfinite(l.intensity) && l.intensity >= 0)) fail(name + ": its intensity must be finite and non-negative, got " + number_text(l.intensity));
+        if (l.type == "directional") {
+            const vec3 down = world.linear * vec3(0, 0, -1);
+            if (!(down.length() > 0)) fail(name + ": its node's matrix is singular");
+            out_.directional_lights.push_back({down, l.intensity * c});
+            return;
+        }
         point_light light{world.apply(point3(0, 0, 0)), l.intensity * c};
         if (l.type == "spot") {
             // A spot shines down its node's -z axis; glTF's cones: 0 <= inner < outer <= pi / 2.

@@ -4,7 +4,7 @@
 // `render model.obj` and `render model.glb` show it.
 //
 //   rt::scene_description s = rt::load_model_scene("helmet.glb");   // throws scene_error
-//   rt::render(s.cam, s.world, s.point_lights);
+//   rt::render(s.cam, s.world, s.point_lights, s.directional_lights);
 //
 // The view is the model's own camera when a glTF has one (its position, direction, up and
 // vertical field of view; its aspect ratio when it gives one). Otherwise the default view: looking
@@ -71,9 +71,10 @@ RTWEEKEND_ENGINE_FUNCTION scene_description load_model_scene(const std::string& 
         scene.files = std::move(model.files);
         scene.world = std::move(model.world);
         scene.point_lights = std::move(model.point_lights);
+        scene.directional_lights = std::move(model.directional_lights);
         lo = model.lo;
         hi = model.hi;
-        emits = model.emits || !scene.point_lights.empty();
+        emits = model.emits || !scene.point_lights.empty() || !scene.directional_lights.empty();
         if (model.has_view) {
             has_view = true;
             cam.lookfrom = model.view.lookfrom;

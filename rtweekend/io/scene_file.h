@@ -40,6 +40,8 @@
 //   group NAME ... end           the shapes between are not drawn, but kept as NAME, for
 //   instance NAME [<transform>...]      placing as a whole, as many times as wanted (one copy)
 //   point_light x y z r g b      a point light of intensity (r, g, b): irradiance I cos / d^2
+//   directional_light dx dy dz r g b    light travelling along (dx, dy, dz) from infinity (the
+//                                sun), irradiance (r, g, b) facing it: E cos at any distance
 // where <material> is <kind> and five numbers (a material ignores those it does not use):
 //   lambertian r g b fuzz ior    albedo (r g b may be @NAME: a texture)
 //   metal r g b fuzz ior         albedo, fuzz
@@ -67,6 +69,7 @@
 #include "../camera.h"
 #include "../render/pixel_filter.h"
 #include "../hittable_list.h"
+#include "../directional_light.h"
 #include "../point_light.h"
 #include "../core/scene_error.h"
 
@@ -90,6 +93,7 @@ struct scene_description {
     camera cam;
     hittable_list world;
     std::vector<point_light> point_lights; // found by light sampling only (render with rt::render(cam, world, point_lights))
+    std::vector<directional_light> directional_lights; // the same (rt::render(cam, world, point_lights, directional_lights))
     // What was read but cannot be rendered as written, one line each (a model's unsupported
     // maps: io/obj_model.h); the render apps print them.
     std::vector<std::string> warnings;
@@ -267,6 +271,17 @@ inline point_light parse_point_light_line(const scene_line& line) {
     point_light l{line.vector(1, "point light position"), line.vector(4, "point light intensity")};
     if (l.intensity.x() < 0 || l.intensity.y() < 0 || l.intensity.z() < 0)
         line.fail("point light intensity must be non-negative");
+    return l;
+}
+
+inline directional_light parse_directional_light_line(const scene_line& line) {
+    line.expect_count(7, "directional_light dx dy dz r g b");
+    directional_light l{line.vector(1, "directional light direction"), line.vector(4, "directional light irradiance")};
+    const double length_squared = l.direction.length_squared();
+    if (!(length_squared > 0)) line.fail("directional light direction must not be zero");
+    if (!std::isfinite(length_squared)) line.fail("directional light direction is too long to normalise");
+    if (l.irradiance.x() < 0 || l.irradiance.y() < 0 || l.irradiance.z() < 0)
+        line.fail("directional light irradiance must be non-negative");
     return l;
 }
 
@@ -618,6 +633,8 @@ inline void scene_parser::line(const scene_line& line) {
         add(transforms_from(line, 2, found->second));
     } else if (word == "point_light") {
         scene_.point_lights.push_back(parse_point_light_line(line));
+    } else if (word == "directional_light") {
+        scene_.directional_lights.push_back(parse_directional_light_line(line));
     } else if (word == "background") {
         line.expect_count(4, "background r g b");
         color bg = line.vector(1, "background");
@@ -626,7 +643,7 @@ inline void scene_parser::line(const scene_line& line) {
     } else {
         line.fail("unknown directive '" + word +
                   "' (expected camera, background, texture, sphere, moving_sphere, triangle, quad, box, mesh, "
-                  "medium, group, end, instance or point_light)");
+                  "medium, group, end, instance, point_light or directional_light)");
     }
 }
 

@@ -964,7 +964,7 @@ class xml_scene_reader {
                 const std::string owner = element_name(l);
                 directional_light light;
                 light.direction = nonzero(child(l, "Direction", true), owner);
-                light.radiance = colour(child(l, "Radiance", true), owner);
+                light.irradiance = colour(child(l, "Radiance", true), owner);
                 scene.directional_lights.push_back(light);
             }
             for (node l : section.children("SpotLight")) {

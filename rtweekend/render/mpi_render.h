@@ -101,7 +101,8 @@ void require_same(MPI_Comm comm, const std::string& value, const std::string& wh
 // statistics; rank 0 the image (and with settings.keep_sums the sums), the others an empty image.
 // settings.stop must be null.
 render_result path_trace(MPI_Comm comm, const hittable& world, const camera_frame& frame, const environment& env,
-                         const render_settings& settings, const std::vector<point_light>& point_lights = {});
+                         const render_settings& settings, const std::vector<point_light>& point_lights = {},
+                         const std::vector<directional_light>& directional_lights = {});
 // The same for a scene every rank has compiled already (each camera of a course scene, say).
 render_result path_trace(MPI_Comm comm, const compiled_scene& scene, const camera_frame& frame, const environment& env,
                          const render_settings& settings);
@@ -332,13 +333,14 @@ inline void require_same(MPI_Comm comm, const std::string& value, const std::str
 }
 
 inline render_result path_trace(MPI_Comm comm, const hittable& world, const camera_frame& frame, const environment& env,
-                                const render_settings& settings, const std::vector<point_light>& point_lights) {
+                                const render_settings& settings, const std::vector<point_light>& point_lights,
+                                const std::vector<directional_light>& directional_lights) {
     const int ranks = size_of(comm);
     const bool by_tiles = settings.adaptive_error == 0 &&
                           !detail::split_by_samples(settings.sample_end() - settings.first_sample, ranks);
     const detail::communicator_share share(comm, by_tiles);
     return detail::run_shared(comm, share, settings, [&](const render_settings& mine) {
-        return rt::path_trace(world, frame, env, mine, point_lights);
+        return rt::path_trace(world, frame, env, mine, point_lights, directional_lights);
     });
 }
 

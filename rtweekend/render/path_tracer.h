@@ -12,6 +12,7 @@
 // around the cameras (path_trace(world, ...) compiles around the frame's position).
 
 #include "../core/engine_linkage.h"
+#include "../directional_light.h"
 #include "../point_light.h"
 #include "camera_frame.h"
 #include "environment.h"
@@ -28,11 +29,12 @@ class hittable;
 // Renders the compiled scene through `frame` with the path tracer. Throws scene_error on bad input.
 RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const compiled_scene& scene, const camera_frame& frame,
                                                    const environment& env, const render_settings& settings);
-// Compiles `world` around the frame's position (with point lights, which only light sampling finds:
-// the bsdf estimator never does), then renders it.
+// Compiles `world` around the frame's position (with point and directional lights, which only
+// light sampling finds: the bsdf estimator never does), then renders it.
 RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const hittable& world, const camera_frame& frame,
                                                    const environment& env, const render_settings& settings,
-                                                   const std::vector<point_light>& point_lights = {});
+                                                   const std::vector<point_light>& point_lights = {},
+                                                   const std::vector<directional_light>& directional_lights = {});
 
 } // namespace rt
 
@@ -318,10 +320,12 @@ RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const compiled_scene& scene, 
 
 RTWEEKEND_ENGINE_FUNCTION render_result path_trace(const hittable& world, const camera_frame& frame,
                                                       const environment& env, const render_settings& settings,
-                                                      const std::vector<point_light>& point_lights) {
+                                                      const std::vector<point_light>& point_lights,
+                                                      const std::vector<directional_light>& directional_lights) {
     const auto start = std::chrono::steady_clock::now(); // the statistics' time includes the compile
     settings.check();
-    return detail::path_trace_from(compile_scene(world, frame.position, point_lights), frame, env, settings, start);
+    return detail::path_trace_from(compile_scene(world, frame.position, point_lights, directional_lights), frame, env,
+                                   settings, start);
 }
 
 // The render itself: the scene seen through `frame`, from `start` on.

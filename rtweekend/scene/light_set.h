@@ -9,14 +9,14 @@
 //
 // An emitter is a built-in shape whose material is a diffuse_light, of a shape kind that is light
 // sampled (scene/shape_kinds.h); the scene compiler finds them (scene_compiler.h) and records, per
-// shape, which light it is. Point lights (intensity I: irradiance I cos / d^2) come from the scene
-// description. Each light is sampled by its kind (scene/light_kinds.h): spheres by the cone of
+// shape, which light it is. Point lights (intensity I: irradiance I cos / d^2) and directional
+// lights (irradiance E cos at any distance) come from the scene description. Each light is sampled by its kind (scene/light_kinds.h): spheres by the cone of
 // directions they subtend, quads by solid angle (spherical rectangles) or by area, triangles by
 // area.
 //
 // A light is chosen with probability proportional to its power (an alias table, alias_table.h):
 // Le * area * pi for a one-sided area light (twice that two-sided), 4 pi I for a point light,
-// per channel averaged. Positions are relative to the scene origin, in float, like the shapes.
+// E pi R^2 for a directional light over a scene of bounding radius R, per channel averaged. Positions are relative to the scene origin, in float, like the shapes.
 
 #include "../core/alias_table.h"
 #include "../core/rng.h"
@@ -38,11 +38,13 @@ namespace rt {
 // One light sample, as seen from the shading point p.
 struct light_choice {
     vec3f wi;              // unit direction from p towards the light
-    vec3f radiance;        // arriving at p along wi if nothing is in the way (I / d^2 for a point light)
+    vec3f radiance;        // arriving at p along wi if nothing is in the way (I / d^2 for a point
+                           // light, E for a directional one)
     float pdf = 0;         // solid-angle density of wi times the light's selection probability;
-                           // for a point light, the selection probability alone
-    bool delta = false;    // a point light: no material-sampled ray can find it
-    vec3f y;               // the sampled point (a point light's position), where the shadow ray ends
+                           // for a delta light, the selection probability alone
+    bool delta = false;    // a point or directional light: no material-sampled ray can find it
+    vec3f y;               // the sampled point (a point light's position; beyond the scene for a
+                           // directional light), where the shadow ray ends
     vec3f n;               // an area light's outward unit normal at y
     // For a textured area light (texture != UINT32_MAX), whose radiance the caller looks up: the light.
     uint32_t texture = UINT32_MAX;
@@ -64,7 +66,7 @@ class light_set {
         return static_cast<uint32_t>(lights.size() - 1);
     }
     // Builds the selection tables: over every light (next-event estimation), and over the area
-    // lights and the point lights apart (book 3's mixture estimator).
+    // lights and the delta (point and directional) lights apart (book 3's mixture estimator).
     void finish();
 
     bool empty() const { return lights.empty(); }
@@ -81,7 +83,7 @@ class light_set {
     // uniforms). False when the chosen light cannot be sampled from p (p on its plane, say).
     template <class Uniform>
     bool sample(const vec3f& p, Uniform& u, light_choice& s) const { return sample_from(all_, p, u, s); }
-    // The same among the area lights alone, and among the point lights alone.
+    // The same among the area lights alone, and among the delta lights alone.
     template <class Uniform>
     bool sample_area(const vec3f& p, Uniform& u, light_choice& s) const { return sample_from(area_, p, u, s); }
     template <class Uniform>
@@ -182,13 +184,12 @@ bool light_set::sample_from(const table& t, const vec3f& p, Uniform& u, light_ch
     s.y = ls.y;
     s.n = ls.n;
     if (l.is_delta()) {
-        // A point light: its intensity falls off with the squared distance, and no other strategy
-        // can find its direction.
-        const float spot = l.visit([&](const auto& e) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(e)>, point_emitter>) return e.falloff(-ls.wi);
+        // A point light (its intensity falls off with the squared distance) or a directional one:
+        // no other strategy can find its direction.
+        s.radiance = l.emission * l.visit([&](const auto& e) {
+            if constexpr (std::decay_t<decltype(e)>::is_delta) return e.arriving(p, ls);
             else return 1.0f;
         });
-        s.radiance = l.emission * (spot / length_squared(ls.y - p));
         s.pdf = pmf;
         s.delta = true;
         return true;

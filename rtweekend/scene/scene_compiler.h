@@ -24,6 +24,7 @@
 #include "../core/scene_error.h"
 #include "../hittable.h"
 #include "../material.h"
+#include "../directional_light.h"
 #include "../point_light.h"
 #include "compiled_scene.h"
 
@@ -41,9 +42,11 @@
 namespace rt {
 
 RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin);
-// The same, with point lights for light sampling (besides the emitters the world holds).
+// The same, with point and directional lights for light sampling (besides the emitters the world
+// holds).
 RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin,
-                                                       const std::vector<point_light>& point_lights);
+                                                       const std::vector<point_light>& point_lights,
+                                                       const std::vector<directional_light>& directional_lights = {});
 
 // The table entry for the material a user's hittable reported at a hit (compiled on the spot).
 RTWEEKEND_ENGINE_FUNCTION compiled_material compile_reported_material(const hit_record& rec);
@@ -540,7 +543,8 @@ inline void scene_compiler::find_lights() {
 } // namespace detail
 
 RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, const point3& origin,
-                                                       const std::vector<point_light>& point_lights) {
+                                                       const std::vector<point_light>& point_lights,
+                                                       const std::vector<directional_light>& directional_lights) {
     if (!finite3(origin)) throw scene_error("camera position must be finite, got " + point_text(origin));
     compiled_scene scene;
     scene.origin = origin;
@@ -567,6 +571,21 @@ RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, co
         light l;
         l.emitter = e;
         l.emission = vec3f(p.intensity);
+        scene.lights.add(l);
+    }
+    // A directional light's power and light paths take the scene's bounding sphere (its box's
+    // circumscribed sphere; directional_emitter.h).
+    const bool bounded = !scene.bounds.empty();
+    const vec3f centre = bounded ? 0.5f * (scene.bounds.lo + scene.bounds.hi) : vec3f{0, 0, 0};
+    const float radius = bounded ? 0.5f * length(scene.bounds.hi - scene.bounds.lo) : 0.0f;
+    for (const directional_light& d : directional_lights) {
+        const double length = d.direction.length();
+        if (!std::isfinite(length) || !(length > 0))
+            throw scene_error("directional light direction must be a non-zero finite vector, got " + point_text(d.direction));
+        check_color(d.irradiance, "directional light irradiance");
+        light l;
+        l.emitter = directional_emitter{vec3f(-d.direction / length), centre, std::isfinite(radius) ? radius : 0.0f};
+        l.emission = vec3f(d.irradiance);
         scene.lights.add(l);
     }
     scene.lights.finish();

@@ -32,6 +32,13 @@ struct point_emitter {
     static constexpr bool is_delta = true;
     float area() const { return 0; }
     double area_in_double() const { return 0; }
+    // The power of intensity I (I averaged over channels; light::power): 4 pi I over the sphere,
+    // the cone's share of it for a spot; in double where float overflows.
+    float power(float mean) const { return 4.0f * pi_f * mean * solid_angle_share(); }
+    double power_in_double(double mean) const { return 4.0 * 3.14159265358979323846 * mean * double(solid_angle_share()); }
+    // What the intensity is multiplied by at p for the sampled point (s.y, the light): the cone's
+    // fall-off over the squared distance, I a^2 / d^2.
+    float arriving(const vec3f& p, const light_sample& s) const { return falloff(-s.wi) / length_squared(s.y - p); }
 
     // The direction to the point; the light set weighs its intensity by 1 / d^2. pdf 1: the
     // direction is certain (light_choice::delta).
