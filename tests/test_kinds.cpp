@@ -289,7 +289,7 @@ void check_light_kind() {
     // A light path leaves it with a finite throughput.
     ray3f r;
     vec3f throughput;
-    e.start_path(l.emission, l.two_sided, 1.0f, K::is_delta ? 0.0f : 1.0f / l.area(), rng, r, throughput);
+    e.start_path(l.emission, l.two_sided, 1.0f, K::is_delta ? 0.0f : 1.0f / l.area(), box3f{}, rng, r, throughput);
     CHECK(is_finite(r.origin));
     CHECK(std::fabs(length(r.dir) - 1) < 1e-5f);
     CHECK(is_finite(throughput));

@@ -172,7 +172,7 @@ void splat_filtered(const camera_frame& frame, const camera_frame::connection& c
 // start_density: per light, detail::light_path_start_density.
 template <class Splat>
 void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth,
-                        const std::vector<float>& start_density, pcg32& rng, Splat&& splat, uint64_t& rays);
+                        const std::vector<float>& start_density, const box3f& aim, pcg32& rng, Splat&& splat, uint64_t& rays);
 
 // The points a camera sample's own light path reaches past delta vertices, for joining the
 // camera path's vertices to (caustic_splats::deep_light_path_weight): the light path starts as
@@ -279,7 +279,7 @@ class caustic_splats {
         const int64_t end = std::min(paths_, int64_t(job + 1) * paths_per_job);
         for (int64_t k = int64_t(job) * paths_per_job; k < end; ++k) {
             pcg32 rng = sample_rng(seed_, uint64_t(k), uint64_t(s));
-            trace_caustic_path(scene_, frame_, max_depth_, start_density_, rng,
+            trace_caustic_path(scene_, frame_, max_depth_, start_density_, delta_bounds_, rng,
                                [&](int x, int y, const vec3f& value, uint32_t l, float camera_density) {
                                    const float w = light_path_weight(l, camera_density);
                                    if (w > 0) add(x, y, value * (share * w));
@@ -369,9 +369,9 @@ namespace detail {
 // light_path_start_density, worked out once per render), a direction, and the throughput the path
 // carries. False when l is textured (left to the path tracer) or degenerate (density 0).
 template <class Uniform>
-bool start_light_path(const light& l, float pmf, float density, Uniform& u, ray3f& r, vec3f& throughput) {
+bool start_light_path(const light& l, float pmf, float density, const box3f& aim, Uniform& u, ray3f& r, vec3f& throughput) {
     if (!(density > 0)) return false;
-    l.visit([&](const auto& e) { e.start_path(l.emission, l.two_sided, pmf, density, u, r, throughput); });
+    l.visit([&](const auto& e) { e.start_path(l.emission, l.two_sided, pmf, density, aim, u, r, throughput); });
     return true;
 }
 
@@ -394,13 +394,13 @@ inline const compiled_material* light_path_step(const compiled_scene& scene, con
 
 template <class Splat>
 void trace_caustic_path(const compiled_scene& scene, const camera_frame& frame, int max_depth,
-                        const std::vector<float>& start_density, pcg32& rng, Splat&& splat, uint64_t& rays) {
+                        const std::vector<float>& start_density, const box3f& aim, pcg32& rng, Splat&& splat, uint64_t& rays) {
     float pmf = 0;
     const uint32_t chosen = scene.lights.pick(rng.next_float(), pmf);
     if (chosen == light_set::none) return;
     ray3f r;
     vec3f throughput;
-    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, start_density[chosen], rng, r, throughput)) return;
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, start_density[chosen], aim, rng, r, throughput)) return;
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();
     if (scene.has_motion) r.time = rng.next_float();
@@ -474,7 +474,8 @@ void trace_caustic_light_vertices(const compiled_scene& scene, const caustic_spl
     out.light = chosen;
     ray3f r;
     vec3f throughput;
-    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, splats.start_density(chosen), u, r, throughput))
+    if (!detail::start_light_path(scene.lights.lights[chosen], pmf, splats.start_density(chosen), splats.delta_bounds(), u, r,
+                                  throughput))
         return;
     r.tmin = 0;
     r.tmax = std::numeric_limits<float>::infinity();

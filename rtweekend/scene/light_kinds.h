@@ -13,8 +13,10 @@
 //                               (1 for a delta light); false when nothing can be sampled from p
 //   pdf(p, y, ny)               the density sample() gives the direction from p to its point y
 //   meet(p, wi, y, ny)          where the half-line p + t wi first meets it (false for a point)
-//   start_path(Le, two_sided, pmf, density, u, r, throughput)
-//                               a light path leaving it (render/caustic_paths.h)
+//   start_path(Le, two_sided, pmf, density, aim, u, r, throughput)
+//                               a light path leaving it (render/caustic_paths.h); aim: the box of
+//                               what light paths are worth sending to (a directional light aims
+//                               at it, the others leave as they would)
 //
 // and one entry in light_kinds below. Emitting shapes become lights of the kind their shape kind
 // names (scene/shape_kinds.h: light_of); point and directional lights come from the scene

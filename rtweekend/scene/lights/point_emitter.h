@@ -2,6 +2,7 @@
 // point_emitter: a light kind (scene/light_kinds.h): a light of no size (point_light.h), intensity
 // I in every direction. No ray can hit it; light sampling reaches it with a delta density.
 
+#include "../../core/box3f.h"
 #include "../../core/constants.h"
 #include "../../core/sampling.h"
 #include "../../core/vec3f.h"
@@ -59,7 +60,8 @@ struct point_emitter {
     // A light path from the point, in a uniform direction (u's first pair): intensity I over the
     // whole sphere, I 4 pi / pmf per path.
     template <class Uniform>
-    void start_path(const vec3f& emission, bool /*two_sided*/, float pmf, float /*density*/, Uniform& u, ray3f& r, vec3f& throughput) const {
+    void start_path(const vec3f& emission, bool /*two_sided*/, float pmf, float /*density*/, const box3f& /*aim*/, Uniform& u,
+                    ray3f& r, vec3f& throughput) const {
         const auto [u1, u2] = draw_2d(u);
         r.origin = position;
         r.dir = sample_unit_sphere(u1, u2);

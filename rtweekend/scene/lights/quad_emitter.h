@@ -3,6 +3,7 @@
 // corner Q and edges u, v), sampled by solid angle where it looks large and by area elsewhere
 // (scene/light_sampling.h).
 
+#include "../../core/box3f.h"
 #include "../../core/sampling.h"
 #include "../../core/vec3f.h"
 #include "../light_sampling.h"
@@ -36,7 +37,8 @@ struct quad_emitter {
 
     // A light path from a uniform point of the quad (u's first pair), leaving by its cosine.
     template <class Uniform>
-    void start_path(const vec3f& emission, bool two_sided, float /*pmf*/, float density, Uniform& rng, ray3f& r, vec3f& throughput) const {
+    void start_path(const vec3f& emission, bool two_sided, float /*pmf*/, float density, const box3f& /*aim*/, Uniform& rng,
+                    ray3f& r, vec3f& throughput) const {
         const auto [u1, u2] = draw_2d(rng);
         detail::start_area_path(corner + u1 * u + u2 * v, normalize(cross(u, v)), emission, two_sided, density, rng, r,
                                 throughput);

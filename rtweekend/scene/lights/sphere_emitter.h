@@ -2,6 +2,7 @@
 // sphere_emitter: a light kind (scene/light_kinds.h): an emitting sphere, sampled by the cone of
 // directions it subtends (scene/light_sampling.h).
 
+#include "../../core/box3f.h"
 #include "../../core/constants.h"
 #include "../../core/sampling.h"
 #include "../../core/vec3f.h"
@@ -45,7 +46,8 @@ struct sphere_emitter {
 
     // A light path from a uniform point of the sphere (u's first pair), leaving by its cosine.
     template <class Uniform>
-    void start_path(const vec3f& emission, bool two_sided, float /*pmf*/, float density, Uniform& u, ray3f& r, vec3f& throughput) const {
+    void start_path(const vec3f& emission, bool two_sided, float /*pmf*/, float density, const box3f& /*aim*/, Uniform& u,
+                    ray3f& r, vec3f& throughput) const {
         const auto [u1, u2] = draw_2d(u);
         const vec3f n = sample_unit_sphere(u1, u2);
         detail::start_area_path(centre + radius * n, n, emission, two_sided, density, u, r, throughput);

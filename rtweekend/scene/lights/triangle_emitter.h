@@ -2,6 +2,7 @@
 // triangle_emitter: a light kind (scene/light_kinds.h): an emitting triangle (of a mesh, or a
 // single one), sampled uniformly by area (scene/light_sampling.h).
 
+#include "../../core/box3f.h"
 #include "../../core/sampling.h"
 #include "../../core/vec3f.h"
 #include "../light_sampling.h"
@@ -35,7 +36,8 @@ struct triangle_emitter {
 
     // A light path from a uniform point of the triangle (u's first pair), leaving by its cosine.
     template <class Uniform>
-    void start_path(const vec3f& emission, bool two_sided, float /*pmf*/, float density, Uniform& u, ray3f& r, vec3f& throughput) const {
+    void start_path(const vec3f& emission, bool two_sided, float /*pmf*/, float density, const box3f& /*aim*/, Uniform& u,
+                    ray3f& r, vec3f& throughput) const {
         const auto [u1, u2] = draw_2d(u);
         const barycentric w = uniform_triangle_point(u1, u2);
         detail::start_area_path(w.b0 * a + w.b1 * b + w.b2 * c, normalize(cross(b - a, c - a)), emission, two_sided,
