@@ -63,6 +63,52 @@ void tool_usage_error(const description& d, void (*print_tool_usage)(std::FILE*)
     std::exit(2);
 }
 
+std::vector<std::string> parse_tool_arguments(int argc, char** argv, const description& d,
+                                              void (*print_tool_usage)(std::FILE*), const tool_option& option) {
+    std::vector<std::string> operands;
+    bool options_ended = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (options_ended || arg.size() < 2 || arg[0] != '-') {
+            operands.push_back(arg);
+        } else if (arg == "--help" || arg == "-h") {
+            print_tool_usage(stdout);
+            std::exit(0);
+        } else if (arg == "--") {
+            options_ended = true;
+        } else {
+            const auto value = [&]() -> std::string {
+                if (i + 1 >= argc) tool_usage_error(d, print_tool_usage, arg + " needs a value");
+                return argv[++i];
+            };
+            if (!option(arg, value)) tool_usage_error(d, print_tool_usage, "unknown option '" + arg + "'");
+        }
+    }
+    if (operands.size() < d.min_positional || operands.size() > d.max_positional)
+        tool_usage_error(d, print_tool_usage,
+                         std::string("expected ") + d.operands + ", got " + std::to_string(operands.size()) +
+                             (operands.size() == 1 ? " operand" : " operands"));
+    return operands;
+}
+
+long long tool_integer(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& flag,
+                       const std::string& text, long long min, long long max) {
+    try {
+        return detail::integer_value(flag, text, min, max);
+    } catch (const parse_stop& stop) {
+        tool_usage_error(d, print_tool_usage, stop.message);
+    }
+}
+
+double tool_real(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& flag,
+                 const std::string& text, double min, double max) {
+    try {
+        return detail::real_value(flag, text, min, max);
+    } catch (const parse_stop& stop) {
+        tool_usage_error(d, print_tool_usage, stop.message);
+    }
+}
+
 void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -109,9 +110,26 @@ bool is_xml_scene(const std::string& path);
 
 void print_usage(const description& d, std::FILE* to);
 
-// For a tool with a parser of its own (compare, tonemap): "NAME: error: MESSAGE" and the tool's
-// usage (print_tool_usage) on stderr, then exit status 2.
+// For a tool with a parser of its own (compare, tonemap, aov_sheet): "NAME: error: MESSAGE" and
+// the tool's usage (print_tool_usage) on stderr, then exit status 2.
 [[noreturn]] void tool_usage_error(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& message);
+
+// A tool's command line, the common part: --help or -h prints the tool's usage on stdout and
+// exits 0; "--" ends the options; every other argument that starts with '-' goes to
+// option(flag, value), which returns whether it knows the flag and calls value() for the
+// argument after it ("FLAG needs a value" when there is none). An unknown option, or a number of
+// operands outside d's [min_positional, max_positional], is a usage error (tool_usage_error).
+// Returns the operands in order.
+using tool_option = std::function<bool(const std::string& flag, const std::function<std::string()>& value)>;
+std::vector<std::string> parse_tool_arguments(int argc, char** argv, const description& d,
+                                              void (*print_tool_usage)(std::FILE*), const tool_option& option);
+
+// A tool flag's number within [min, max] (finite, for a real); a usage error (tool_usage_error)
+// otherwise.
+long long tool_integer(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& flag,
+                       const std::string& text, long long min, long long max);
+double tool_real(const description& d, void (*print_tool_usage)(std::FILE*), const std::string& flag,
+                 const std::string& text, double min, double max);
 
 [[noreturn]] void usage_error(const description& d, const std::string& message);
 

@@ -43,8 +43,6 @@ void print_usage(std::FILE* to) {
                  d.summary);
 }
 
-[[noreturn]] void usage_error(const std::string& message) { app::tool_usage_error(d, print_usage, message); }
-
 struct arguments {
     std::vector<std::string> files;
     int cells = 0; // 0: no error map
@@ -52,30 +50,11 @@ struct arguments {
 
 arguments parse(int argc, char** argv) {
     arguments args;
-    std::vector<std::string>& files = args.files;
-    bool options_ended = false;
-    for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i];
-        if (!options_ended && (arg == "--help" || arg == "-h")) {
-            print_usage(stdout);
-            std::exit(0);
-        } else if (!options_ended && arg == "--cells") {
-            if (i + 1 >= argc) usage_error("--cells needs a value");
-            try {
-                args.cells = int(app::detail::integer_value("--cells", argv[++i], 1, 65536));
-            } catch (const app::parse_stop& stop) {
-                usage_error(stop.message);
-            }
-        } else if (!options_ended && arg == "--") {
-            options_ended = true;
-        } else if (!options_ended && arg.size() > 1 && arg[0] == '-') {
-            usage_error("unknown option '" + arg + "'");
-        } else {
-            files.push_back(arg);
-        }
-    }
-    if (files.size() != 2)
-        usage_error(std::string("expected ") + d.operands + " (two file names), got " + std::to_string(files.size()));
+    args.files = app::parse_tool_arguments(argc, argv, d, print_usage, [&](const std::string& flag, const auto& value) {
+        if (flag != "--cells") return false;
+        args.cells = int(app::tool_integer(d, print_usage, flag, value(), 1, 65536));
+        return true;
+    });
     return args;
 }
 

@@ -38,8 +38,6 @@ void print_usage(std::FILE* to) {
                  d.summary);
 }
 
-[[noreturn]] void usage_error(const std::string& message) { app::tool_usage_error(d, print_usage, message); }
-
 struct arguments {
     std::vector<std::string> files;
     rt::photographic_tonemap tonemap;
@@ -47,38 +45,15 @@ struct arguments {
 
 arguments parse(int argc, char** argv) {
     arguments args;
-    bool options_ended = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&](double min, double max) {
-            if (i + 1 >= argc) usage_error(arg + " needs a value");
-            try {
-                return app::detail::real_value(arg, argv[++i], min, max);
-            } catch (const app::parse_stop& stop) {
-                usage_error(stop.message);
-            }
-        };
-        if (!options_ended && (arg == "--help" || arg == "-h")) {
-            print_usage(stdout);
-            std::exit(0);
-        } else if (!options_ended && arg == "--key") {
-            args.tonemap.key = value(1e-300, 1e300);
-        } else if (!options_ended && arg == "--burn") {
-            args.tonemap.burn = value(0, 99.999999);
-        } else if (!options_ended && arg == "--saturation") {
-            args.tonemap.saturation = value(0, 1e6);
-        } else if (!options_ended && arg == "--gamma") {
-            args.tonemap.gamma = value(1e-6, 1e6);
-        } else if (!options_ended && arg == "--") {
-            options_ended = true;
-        } else if (!options_ended && arg.size() > 1 && arg[0] == '-') {
-            usage_error("unknown option '" + arg + "'");
-        } else {
-            args.files.push_back(arg);
-        }
-    }
-    if (args.files.size() != 2)
-        usage_error(std::string("expected ") + d.operands + " (two file names), got " + std::to_string(args.files.size()));
+    args.files = app::parse_tool_arguments(argc, argv, d, print_usage, [&](const std::string& flag, const auto& value) {
+        auto number = [&](double min, double max) { return app::tool_real(d, print_usage, flag, value(), min, max); };
+        if (flag == "--key") args.tonemap.key = number(1e-300, 1e300);
+        else if (flag == "--burn") args.tonemap.burn = number(0, 99.999999);
+        else if (flag == "--saturation") args.tonemap.saturation = number(0, 1e6);
+        else if (flag == "--gamma") args.tonemap.gamma = number(1e-6, 1e6);
+        else return false;
+        return true;
+    });
     return args;
 }
 
