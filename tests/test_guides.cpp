@@ -10,9 +10,11 @@
 
 #include <doctest/doctest.h>
 
+#include "aov_sheet.h"
 #include "test_helpers.h"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #if defined(RTWEEKEND_HAVE_OPENEXR) && RTWEEKEND_HAVE_OPENEXR
@@ -174,5 +176,35 @@ TEST_CASE("guides: an EXR of several images holds each channel under its name") 
     test::check_scene_error([&] { encode_exr({{&beauty, {"R", "G", "B"}}, {&small, {"Z"}}}, "bad.exr"); }, {"bad.exr", "differ in size"});
 }
 #endif
+
+TEST_CASE("aov_sheet: the four panels, each value mapped as the app's help says") {
+    // Two pixels: one sees a surface at distance 2 (albedo 0.25, normal (0, 0, 1)), the other
+    // one at distance 8 (normal (-1, 0, 0)); a third sees nothing. Shown through the book's gamma 2,
+    // each panel value v is stored as v^2.
+    image render(3, 1), albedo(3, 1), normal(3, 1), depth(3, 1), position(3, 1);
+    render.set_pixel(0, 0, color(0.5, 0.25, 1));
+    albedo.set_pixel(0, 0, color(0.25, 0.25, 0.25));
+    normal.set_pixel(0, 0, color(0, 0, 1));
+    normal.set_pixel(1, 0, color(-1, 0, 0));
+    depth.set_pixel(0, 0, color(2, 2, 2));
+    depth.set_pixel(1, 0, color(8, 8, 8));
+    const double inf = std::numeric_limits<double>::infinity();
+    depth.set_pixel(2, 0, color(inf, inf, inf));
+    const image sheet = app::aov_sheet_image(render, guide_images{albedo, normal, depth, position});
+    REQUIRE(sheet.width() == 6);
+    REQUIRE(sheet.height() == 2);
+    CHECK(sheet.pixel(0, 0).y() == doctest::Approx(0.25)); // the render, as it is
+    CHECK(sheet.pixel(3, 0).x() == doctest::Approx(0.25)); // the albedo, as it is
+    // The normal as 0.5 + 0.5 n: (0.5, 0.5, 1) and (0, 0.5, 0.5), squared; black where no hit.
+    CHECK(sheet.pixel(0, 1).x() == doctest::Approx(0.25));
+    CHECK(sheet.pixel(0, 1).z() == doctest::Approx(1));
+    CHECK(sheet.pixel(1, 1).x() == doctest::Approx(0));
+    CHECK(sheet.pixel(1, 1).y() == doctest::Approx(0.25));
+    CHECK(sheet.pixel(2, 1).y() == 0);
+    // The inverse depth, nearest / depth: 1 and 1/4, squared; black where nothing was hit.
+    CHECK(sheet.pixel(3, 1).x() == doctest::Approx(1));
+    CHECK(sheet.pixel(4, 1).x() == doctest::Approx(1.0 / 16));
+    CHECK(sheet.pixel(5, 1).x() == 0);
+}
 
 } // namespace test_guides
