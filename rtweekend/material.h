@@ -396,11 +396,24 @@ class metal_roughness : public material {
     // The base colour looked up per hit, as lambertian's albedo is (glTF's baseColorTexture).
     metal_roughness(std::shared_ptr<texture> base_colour, double metallic, double roughness)
         : base_colour_(std::move(base_colour)), metallic_(metallic), roughness_(roughness) {}
+    // And metallic and roughness per hit too, as glTF's metallicRoughnessTexture gives them: the
+    // map's blue channel times `metallic`, its green times `roughness` (read as data, not colour:
+    // rtw_image::as_data), each clamped to [0, 1]. A null map: the factors alone.
+    metal_roughness(std::shared_ptr<texture> base_colour, double metallic, double roughness,
+                    std::shared_ptr<texture> metallic_roughness_map)
+        : base_colour_(std::move(base_colour)), metallic_(metallic), roughness_(roughness),
+          map_(std::move(metallic_roughness_map)) {}
 
     using material::scatter;
     bool scatter(const ray& r_in, const hit_record& rec, color& attenuation, ray& scattered) const override {
         compiled_material m = compiled();
         if (!base_colour_.solid()) m = m.with_colour(vec3f(base_colour_.at(rec)));
+        if (map_) {
+            const color t = map_->value(rec.u, rec.v, rec.p);
+            m.edit<metal_rough_bsdf>([&](metal_rough_bsdf& b) {
+                b.set_metallic_roughness(float(metallic_ * t.z()), float(roughness_ * t.y()));
+            });
+        }
         return detail::scatter_through_contract(m, r_in, rec, attenuation, scattered);
     }
 
@@ -409,11 +422,7 @@ class metal_roughness : public material {
     compiled_material compiled() const {
         metal_rough_bsdf b;
         b.base_colour = vec3f(base_colour_.constant());
-        b.metallic = static_cast<float>(metallic_);
-        // The blend has no mirror limit of its own (its coat and metal are microfacet lobes
-        // throughout): alpha stops at smooth_alpha, a mirror to within a thousandth of a radian.
-        const float alpha = std::max(alpha_of_roughness(float(roughness_)), smooth_alpha);
-        b.distribution = {alpha, alpha};
+        b.set_metallic_roughness(float(metallic_), float(roughness_));
         return compiled_material::of(b, this);
     }
 
@@ -422,10 +431,12 @@ class metal_roughness : public material {
     const std::shared_ptr<texture>& tex() const { return base_colour_.tex(); }
     double metallic() const { return metallic_; }
     double roughness() const { return roughness_; }
+    const std::shared_ptr<texture>& metallic_roughness_map() const { return map_; }
 
   private:
     surface_colour base_colour_;
     double metallic_, roughness_;
+    std::shared_ptr<texture> map_;
 };
 
 // A material with a tangent-space normal map (glTF's normalTexture): the texture's colour c at the

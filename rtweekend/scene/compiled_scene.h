@@ -55,6 +55,15 @@ class compiled_scene {
         float scale = 1;
     };
     std::vector<normal_map> normal_maps;
+    // Metallic-roughness maps (material.h: metal_roughness with a map), by material index: which
+    // texture, and the factors its blue (metallic) and green (roughness) channels multiply. A
+    // material with one is textured (its base colour a texture, if only a constant one), so that
+    // textured() looks both up. Empty when no material has one.
+    struct metallic_roughness_map {
+        uint32_t texture = UINT32_MAX; // UINT32_MAX: none
+        float metallic = 0, roughness = 0;
+    };
+    std::vector<metallic_roughness_map> metallic_roughness_maps;
     // The set of shapes of kind K (shape_kinds.h), in the BVH's leaf order.
     template <class K>
     K& set() { return std::get<K>(sets_); }

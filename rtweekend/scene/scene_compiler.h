@@ -266,26 +266,36 @@ class scene_compiler {
         if (found != index_.end()) return found->second;
         // A normal map: the base material compiled as itself, under an index of its own, the map
         // beside it in the scene's table (compiled_scene::normal_maps).
-        if (const auto* mapped = dynamic_cast<const normal_mapped*>(m)) {
+        const material* base = m;
+        const auto* mapped = dynamic_cast<const normal_mapped*>(m);
+        if (mapped) {
             if (!mapped->base()) throw scene_error("normal_mapped material has no base material");
             if (!mapped->normals()) throw scene_error("normal_mapped material has no normal map");
             if (!std::isfinite(mapped->scale())) throw scene_error("normal_mapped scale must be finite");
             if (dynamic_cast<const normal_mapped*>(mapped->base().get()))
                 throw scene_error("normal_mapped material's base has a normal map of its own");
-            compiled_material d = compile_material(*mapped->base(), &out_.textures);
-            if (d.is_user()) out_.has_user_materials = true;
-            const auto index = static_cast<uint32_t>(out_.materials.size());
-            out_.materials.push_back(d);
+            base = mapped->base().get();
+        }
+        compiled_material d = compile_material(*base, &out_.textures);
+        if (d.is_user()) out_.has_user_materials = true;
+        const auto index = static_cast<uint32_t>(out_.materials.size());
+        // A metallic-roughness map: beside it in compiled_scene::metallic_roughness_maps, and the
+        // material textured so that textured() looks the map up (its base colour, if constant, as
+        // a constant texture of the table).
+        const auto* blend = dynamic_cast<const metal_roughness*>(base);
+        if (blend && blend->metallic_roughness_map() && !d.is_user()) {
+            if (d.texture == no_texture) d.texture = out_.textures.add(solid_color(blend->base_colour()));
+            out_.metallic_roughness_maps.resize(index + 1);
+            out_.metallic_roughness_maps[index] = {out_.textures.add(*blend->metallic_roughness_map()),
+                                                   float(blend->metallic()), float(blend->roughness())};
+        }
+        out_.materials.push_back(d);
+        if (mapped) {
             out_.normal_maps.resize(out_.materials.size());
             out_.normal_maps[index] = {out_.textures.add(*mapped->normals()), float(mapped->scale())};
-            index_.emplace(m, index);
-            return index;
+        } else if (!out_.normal_maps.empty()) {
+            out_.normal_maps.resize(out_.materials.size());
         }
-        compiled_material d = compile_material(*m, &out_.textures);
-        if (d.is_user()) out_.has_user_materials = true;
-        auto index = static_cast<uint32_t>(out_.materials.size());
-        out_.materials.push_back(d);
-        if (!out_.normal_maps.empty()) out_.normal_maps.resize(out_.materials.size());
         index_.emplace(m, index);
         return index;
     }

@@ -4,7 +4,8 @@
 //   surface_coordinates(scene, hit, u, v)    the (u, v) of a built-in shape's hit, as the books
 //                                            define them (below)
 //   textured(scene, m, hit)                  a copy of material m with its texture looked up at
-//                                            the hit: a lambertian's albedo, a light's emission
+//                                            the hit: a lambertian's albedo, a light's emission,
+//                                            a metal_roughness's metallic and roughness map
 //   textured_light_radiance(scene, lc)       the radiance of a textured light at the point a light
 //                                            sample chose (light_set.h)
 //   shading_normal_at(scene, hit)            the hit's shading normal with its material's normal
@@ -47,7 +48,17 @@ inline vec3f texture_at(const compiled_scene& scene, uint32_t texture, const sur
 } // namespace detail
 
 inline compiled_material textured(const compiled_scene& scene, const compiled_material& m, const surface_hit& hit) {
-    return m.with_colour(detail::texture_at(scene, m.texture, hit));
+    compiled_material out = m.with_colour(detail::texture_at(scene, m.texture, hit));
+    // A metallic-roughness map (compiled_scene::metallic_roughness_maps): blue the metallic, green
+    // the roughness, times the material's factors.
+    if (hit.material < scene.metallic_roughness_maps.size() && !hit.user_shape) {
+        const compiled_scene::metallic_roughness_map& map = scene.metallic_roughness_maps[hit.material];
+        if (map.texture != UINT32_MAX) {
+            const vec3f t = detail::texture_at(scene, map.texture, hit);
+            out.edit<metal_rough_bsdf>([&](metal_rough_bsdf& b) { b.set_metallic_roughness(map.metallic * t.z, map.roughness * t.y); });
+        }
+    }
+    return out;
 }
 
 inline vec3f textured_light_radiance(const compiled_scene& scene, const light_choice& lc) {

@@ -62,6 +62,14 @@ struct metal_rough_bsdf {
     float reversal_ratio(const vec3f&, const vec3f&, bool, const material_sample&) const { return 1; }
     static constexpr bool takes_texture = true;
     void set_colour(const vec3f& c) { base_colour = c; }
+    // Metallic and roughness, each clamped to [0, 1] (a texel times a factor may pass 1). The blend
+    // has no mirror limit of its own (its coat and metal are microfacet lobes throughout): alpha
+    // stops at smooth_alpha, a mirror to within a thousandth of a radian.
+    void set_metallic_roughness(float m, float roughness) {
+        metallic = fmin_inline(fmax_inline(m, 0.0f), 1.0f);
+        const float a = fmax_inline(alpha_of_roughness(fmin_inline(fmax_inline(roughness, 0.0f), 1.0f)), smooth_alpha);
+        distribution = {a, a};
+    }
 
     // In the frame of microfacet_frame: f cos_i.
     vec3f local_eval(const vec3f& o, const vec3f& i) const {
