@@ -321,6 +321,26 @@ TEST_CASE("glTF models: an emitter's radiance, its texture's texels the glTF way
         CHECK(img.pixel(12, 8).x() == doctest::Approx(0).epsilon(1e-3));
         CHECK(img.pixel(12, 8).z() == doctest::Approx(1).epsilon(1e-3));
     }
+    { // The picture as a metallicRoughnessTexture (read as data): blue 0, green 0 on the left, a
+      // smooth dielectric base (the clear coat's 0.04 head-on, the base colour c under it:
+      // 0.04 + 0.96 c under a white sky); blue 1, green 0 on the right, a smooth metal of colour c.
+        const std::string path = scene_with(R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.6,0.3,1],)"
+                                            R"("metallicRoughnessTexture":{"index":0}}})", 1);
+        scene_description s = load_model_scene(path);
+        CHECK(s.warnings.empty());
+        s.cam = test::test_camera(16, 16, 16, 3);
+        s.cam.lookfrom = point3(0, 0, 20);
+        s.cam.lookat = point3(0, 0, 0);
+        s.cam.vfov = 5.6;
+        s.cam.background = color(1, 1, 1);
+        hittable_list world;
+        world.add(std::make_shared<hittable_list>(s.world));
+        const image img = test::render_checked(s.cam, world).img;
+        CHECK(img.pixel(12, 8).x() == doctest::Approx(0.9).epsilon(1e-3));
+        CHECK(img.pixel(12, 8).z() == doctest::Approx(0.3).epsilon(1e-3));
+        CHECK(img.pixel(3, 8).x() == doctest::Approx(0.04 + 0.96 * 0.9).epsilon(1e-2));
+        CHECK(img.pixel(3, 8).z() == doctest::Approx(0.04 + 0.96 * 0.3).epsilon(1e-2));
+    }
     { // u from 0 to 2, repeated: red, blue, red, blue in quarters.
         const image img = render_front(scene_with(R"({"emissiveFactor":[1,1,1],"emissiveTexture":{"index":0}})", 2));
         for (int q = 0; q < 4; ++q) {

@@ -28,12 +28,14 @@
 //   KHR_materials_transmission above 0
 //       glass: dielectric (KHR_materials_ior, default 1.5), or rough_dielectric at its roughness
 //   otherwise
-//       metal_roughness(baseColorFactor * baseColorTexture, metallicFactor, roughnessFactor)
+//       metal_roughness(baseColorFactor * baseColorTexture, metallicFactor, roughnessFactor,
+//                       metallicRoughnessTexture)
 // Pictures are read with their sampler: repeated, mirrored or clamped, bilinear unless the sampler
 // asks for the nearest pixel. A normalTexture makes the material normal_mapped (its frame from
-// the texture coordinates, per triangle: TANGENT is not read). The occlusion texture is not needed
+// the texture coordinates, per triangle: TANGENT is not read); a metallicRoughnessTexture is
+// metal_roughness's map (metallic and roughness per texel). The occlusion texture is not needed
 // by a path tracer, which traces the occlusion it stands for. What is not rendered as written is
-// one warning each (per-texel metallic and roughness, alpha, animation, ...).
+// one warning each (a rough glass's roughness texture, alpha, animation, ...).
 // A malformed file (broken JSON, an index or accessor out of range, a non-finite position) is a
 // scene_error naming the file and the element.
 
@@ -501,27 +503,7 @@ class gltf_reader {
                 return std::make_shared<diffuse_light>(tex, mat.doubleSided);
             return std::make_shared<diffuse_light>(emissive, mat.doubleSided);
         }
-        if (pbr.metallicRoughnessTexture.index >= 0) {
-            // The renderer's metal_roughness takes its metallic and roughness per material: the
-            // texture's mean stands for it (blue is metallic, green roughness).
-            image_sampling s;
-            if (const rtw_image* img = picture(pbr.metallicRoughnessTexture.index, where, s)) {
-                double g = 0, b = 0;
-                const double n = double(img->width()) * double(img->height());
-                for (int y = 0; y < img->height(); ++y)
-                    for (int x = 0; x < img->width(); ++x) {
-                        const unsigned char* px = img->pixel_data(x, y);
-                        g += px[1] / 255.0;
-                        b += px[2] / 255.0;
-                    }
-                if (n > 0) {
-                    metallic *= b / n;
-                    roughness *= g / n;
-                }
-                warn(where + ": its metallicRoughnessTexture is not supported per texel: its mean is used (metallic " +
-                     number_text(metallic) + ", roughness " + number_text(roughness) + ")");
-            }
-        }
+        const tinygltf::TextureInfo& mr = pbr.metallicRoughnessTexture;
         bool transmissive = false;
         const double transmission = ext_number(mat.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, &transmissive);
         if (transmissive && transmission > 0) {
@@ -529,12 +511,29 @@ class gltf_reader {
             if (!(std::isfinite(ior) && ior >= 1)) fail(where + ": ior must be at least 1, got " + number_text(ior));
             if (ior == 1) ior = 1.0 + 1e-6; // glTF's 1 means "no refraction"; the dielectric needs some
             if (transmission < 1) warn(where + ": transmission " + number_text(transmission) + " is rendered as 1 (clear glass)");
+            if (mr.index >= 0) {
+                // The glass takes one roughness: the texture's mean green stands for it.
+                image_sampling s;
+                if (const rtw_image* img = picture(mr.index, where, s)) {
+                    double g = 0;
+                    const double n = double(img->width()) * double(img->height());
+                    for (int y = 0; y < img->height(); ++y)
+                        for (int x = 0; x < img->width(); ++x) g += img->pixel_data(x, y)[1] / 255.0;
+                    if (n > 0) roughness *= g / n;
+                    warn(where + ": glass takes one roughness: the metallicRoughnessTexture's mean is used (roughness " +
+                         number_text(roughness) + ")");
+                }
+            }
             if (roughness > 0) return std::make_shared<rough_dielectric>(ior, roughness);
             return std::make_shared<dielectric>(ior, color(0, 0, 0));
         }
-        if (auto tex = textured(pbr.baseColorTexture, where + " baseColorTexture", base))
-            return std::make_shared<metal_roughness>(tex, metallic, roughness);
-        return std::make_shared<metal_roughness>(base, metallic, roughness);
+        // Metallic (blue) and roughness (green) per texel, as data: metal_roughness's map.
+        std::shared_ptr<texture> map;
+        if (mr.index >= 0) map = textured(mr.index, mr.texCoord, mr.extensions, where + " metallicRoughnessTexture", color(1, 1, 1), true);
+        std::shared_ptr<texture> tex = textured(pbr.baseColorTexture, where + " baseColorTexture", base);
+        if (!tex && !map) return std::make_shared<metal_roughness>(base, metallic, roughness);
+        if (!tex) tex = std::make_shared<solid_color>(base);
+        return std::make_shared<metal_roughness>(tex, metallic, roughness, map);
     }
 
     // --- meshes --------------------------------------------------------------------------------
