@@ -469,11 +469,32 @@ class normal_mapped : public material {
     const std::shared_ptr<material>& base() const { return base_; }
     const std::shared_ptr<texture>& normals() const { return normals_; }
     double scale() const { return scale_; }
+    // Whether the texture holds heights (bump_mapped, below) rather than normals.
+    bool holds_heights() const { return heights_; }
+
+  protected:
+    normal_mapped(std::shared_ptr<material> base, std::shared_ptr<texture> map, double scale, bool heights)
+        : base_(std::move(base)), normals_(std::move(map)), scale_(scale), heights_(heights) {}
 
   private:
     std::shared_ptr<material> base_;
     std::shared_ptr<texture> normals_;
     double scale_;
+    bool heights_ = false;
+};
+
+// A material with a bump (height) map (an OBJ's `bump`): the texture's mean channel h at (u, v),
+// as data, times `scale` is a displacement along the normal in world units, d = scale h (as
+// pbrt's bump mapping and Blender's Bump node at distance 1 read one). The shading normal becomes
+// the normal of the displaced surface, cross(dp/du + dd/du N, dp/dv + dd/dv N) (Blinn 1978,
+// without the small dN/du terms), the slopes dd/du, dd/dv taken by central differences 1e-4 apart
+// in (u, v). Like normal_mapped, it applies on triangles with texture coordinates.
+//
+//   auto rough_wall = make_shared<bump_mapped>(make_shared<lambertian>(grey), heights, 0.02);
+class bump_mapped : public normal_mapped {
+  public:
+    bump_mapped(std::shared_ptr<material> base, std::shared_ptr<texture> heights, double scale)
+        : normal_mapped(std::move(base), std::move(heights), scale, true) {}
 };
 
 // An emitter (books 2 and 3). Book 3's light emits from its front face only (the side its
@@ -629,6 +650,7 @@ using rt::metal;
 using rt::plastic;
 using rt::metal_roughness;
 using rt::normal_mapped;
+using rt::bump_mapped;
 using rt::rough_conductor;
 using rt::rough_dielectric;
 using rt::scatter_record;

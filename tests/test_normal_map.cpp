@@ -2,7 +2,9 @@
 // square with a constant tangent-space normal shades with that normal turned into the world by
 // its dp/du, dp/dv and normal, worked by hand: as the guides see it, mirrored, scaled, inside a
 // rotated instance, and as the light a point lamp gives it (albedo / pi I cos / d^2 with the
-// mapped normal's cosine). A sphere (no texture frame) keeps its own normal.
+// mapped normal's cosine). A sphere (no texture frame) keeps its own normal. Bump maps
+// (bump_mapped): a height ramp h = a u + b v displaced by `scale` tilts the square's normal to
+// cross(dp/du + scale a N, dp/dv + scale b N), worked by hand.
 
 #include <rtweekend/render/guides.h>
 #include <rtweekend/rtweekend.h>
@@ -111,6 +113,69 @@ TEST_CASE("normal maps: a point lamp straight above lights the square by the map
     };
     CHECK(radiance(grey) == doctest::Approx(0.5 / pi).epsilon(1e-3));
     CHECK(radiance(std::make_shared<normal_mapped>(grey, tilted())) == doctest::Approx(0.5 / pi * std::sqrt(0.75)).epsilon(1e-3));
+}
+
+namespace {
+// Heights h = a u + b v (a user texture: the renderer asks it at the (u, v) it chooses).
+class ramp : public texture {
+  public:
+    ramp(double a, double b) : a_(a), b_(b) {}
+    color value(double u, double v, const point3&) const override {
+        const double h = a_ * u + b_ * v;
+        return color(h, h, h);
+    }
+
+  private:
+    double a_, b_;
+};
+} // namespace
+
+TEST_CASE("bump maps: a height ramp tilts a square's normal as worked by hand") {
+    // The square: dp/du = (2, 0, 0), dp/dv = (0, 2, 0), N = +z. Heights 2 u - v, scale 0.5: the
+    // displaced tangents (2, 0, 1) and (0, 2, -0.5), whose cross product is (-2, 1, 4) / sqrt 21.
+    const auto grey = std::make_shared<lambertian>(color(0.5, 0.5, 0.5));
+    const auto heights = std::make_shared<ramp>(2.0, -1.0);
+    const double r = std::sqrt(21.0);
+    {
+        hittable_list world;
+        world.add(square(std::make_shared<bump_mapped>(grey, heights, 0.5)));
+        const color n = centre_normal(world);
+        CHECK(n.x() == doctest::Approx(-2 / r).epsilon(1e-4));
+        CHECK(n.y() == doctest::Approx(1 / r).epsilon(1e-4));
+        CHECK(n.z() == doctest::Approx(4 / r).epsilon(1e-4));
+    }
+    { // u along -x: the heights rise towards -x, the normal leans to +x.
+        hittable_list world;
+        world.add(square(std::make_shared<bump_mapped>(grey, heights, 0.5), true));
+        const color n = centre_normal(world);
+        CHECK(n.x() == doctest::Approx(2 / r).epsilon(1e-4));
+        CHECK(n.y() == doctest::Approx(1 / r).epsilon(1e-4));
+        CHECK(n.z() == doctest::Approx(4 / r).epsilon(1e-4));
+    }
+    { // Constant heights, or scale 0: the surface's own normal.
+        hittable_list world;
+        world.add(square(std::make_shared<bump_mapped>(grey, std::make_shared<solid_color>(0.7, 0.7, 0.7), 3.0)));
+        CHECK(centre_normal(world).z() == doctest::Approx(1));
+        hittable_list flat;
+        flat.add(square(std::make_shared<bump_mapped>(grey, heights, 0.0)));
+        CHECK(centre_normal(flat).z() == doctest::Approx(1));
+    }
+    { // A lamp straight above: (0.5 / pi) I cos / d^2 with cos = 4 / sqrt 21.
+        hittable_list world;
+        world.add(square(std::make_shared<bump_mapped>(grey, heights, 0.5)));
+        camera cam = test::test_camera(3, 3, 4, 2);
+        cam.lookfrom = point3(0, 0.001, 30);
+        cam.lookat = point3(0, 0, 0);
+        cam.vfov = 0.05;
+        cam.background = color(0, 0, 0);
+        const double lit = render(cam, world, {point_light{point3(0, 0, 2), color(4, 4, 4)}}).img.pixel(1, 1).x();
+        CHECK(lit == doctest::Approx(0.5 / pi * 4 / r).epsilon(1e-3));
+    }
+    // Refusals: one line each.
+    hittable_list world;
+    world.add(square(std::make_shared<bump_mapped>(grey, nullptr, 1.0)));
+    camera cam = test::test_camera(2, 2, 1, 1);
+    test::check_scene_error([&] { render(cam, world); }, {"bump_mapped material has no height map"});
 }
 
 } // namespace test_normal_map

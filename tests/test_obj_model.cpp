@@ -170,7 +170,7 @@ TEST_CASE("OBJ models: one warning for what is not rendered as written, one erro
     const obj_model m = load_obj_model(dir.write("w.obj", "mtllib w.mtl\nusemtl a\n" + square(0, 1) + "usemtl b\n" + square(2, 5) +
                                                               "usemtl c\n" + square(4, 9)));
     CHECK(m.warnings.size() == 4);
-    CHECK(contains(m.warnings, "w.mtl: material 'a': bump map 'b.png' is not supported yet and is ignored"));
+    CHECK(contains(m.warnings, "w.mtl: material 'a': bump map 'b.png' not found; the faces are flat"));
     CHECK(contains(m.warnings, "w.mtl: material 'a': map_Ks 's.png' is not supported yet and is ignored"));
     CHECK(contains(m.warnings, "w.mtl: material 'b': "));
     CHECK(contains(m.warnings, "missing.png"));
@@ -226,6 +226,31 @@ TEST_CASE("OBJ models: a norm normal map makes the material normal_mapped, a mis
     CHECK(material_of<rt::lambertian>(m, 1));
     bool warned = false;
     for (const std::string& w : m.warnings) warned = warned || w.find("normal map 'gone.png' not found; the faces are flat") != std::string::npos;
+    CHECK(warned);
+}
+
+TEST_CASE("OBJ models: a bump map makes the material bump_mapped, its -bm the scale") {
+    test::scratch_dir dir("obj_bump");
+    dir.write("h.png", rt::encode_8bit_image(dir.file("h.png"), 2, 1, {0, 0, 0, 255, 255, 255}));
+    dir.write("b.mtl", "newmtl a\nKd 0.5 0.5 0.5\nbump -bm 0.25 h.png\nnewmtl b\nKd 0.5 0.5 0.5\nmap_Bump h.png\n"
+                       "newmtl c\nKd 0.5 0.5 0.5\nnorm h.png\nbump h.png\n");
+    const rt::obj_model m = rt::load_obj_model(
+        dir.write("b.obj", "mtllib b.mtl\nusemtl a\n" + square(0, 1) + "usemtl b\n" + square(2, 5) + "usemtl c\n" + square(4, 9)));
+    const auto* a = material_of<rt::normal_mapped>(m, 0);
+    REQUIRE(a);
+    CHECK(a->holds_heights());
+    CHECK(a->scale() == doctest::Approx(0.25));
+    // Read as data: white is 1, black 0.
+    CHECK(a->normals()->value(0.75, 0.5, rt::point3(0, 0, 0)).x() == doctest::Approx(1).epsilon(1e-6));
+    const auto* b = material_of<rt::normal_mapped>(m, 1);
+    REQUIRE(b);
+    CHECK(b->holds_heights());
+    CHECK(b->scale() == 1); // map_Bump, -bm's default
+    const auto* c = material_of<rt::normal_mapped>(m, 2);
+    REQUIRE(c);
+    CHECK_FALSE(c->holds_heights()); // the normal map wins, said once
+    bool warned = false;
+    for (const std::string& w : m.warnings) warned = warned || w.find("the normal map is used, the bump map 'h.png' is ignored") != std::string::npos;
     CHECK(warned);
 }
 

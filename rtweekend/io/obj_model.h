@@ -18,11 +18,13 @@
 //   map_Kd                          lambertian with that image (relative to the MTL file)
 //   Ks above 0                      blinn_phong(Kd, Ks, Ns)
 //   otherwise                       lambertian(Kd)
-// A `norm` normal map (tangent space, +y up the picture) makes the material normal_mapped.
+// A `norm` normal map (tangent space, +y up the picture) makes the material normal_mapped; a
+// `bump` (or `map_Bump`) height map bump_mapped, the heights (a texel's mean channel, 0 to 1)
+// times its -bm multiplier (default 1) a displacement in the model's units.
 // Faces without a material are grey (lambertian 0.8). Faces with normals (`vn`) are shaded
 // smooth with them, as model viewers do. What is not rendered as written is one
-// warning each: a missing library or texture (the face keeps Kd), bump (height) maps (not
-// supported yet), the other maps, and a textured material's Ks. A malformed file, a negative or
+// warning each: a missing library or texture (the face keeps Kd), a bump map beside a normal
+// map, the other maps, and a textured material's Ks. A malformed file, a negative or
 // non-finite colour is a scene_error naming the file (and line).
 
 #include "../core/engine_linkage.h"
@@ -119,17 +121,24 @@ inline color mtl_colour(const tinyobj::real_t (&c)[3], const std::string& where,
 inline std::shared_ptr<material> material_from_mtl_colours(const tinyobj::material_t& m, const std::string& mtl_path,
                                                            obj_model& model);
 
-// The material an MTL entry becomes (the rules at the top of the file), with its `norm` normal map.
+// The material an MTL entry becomes (the rules at the top of the file), with its `norm` normal
+// map or its `bump` height map.
 inline std::shared_ptr<material> material_from_mtl(const tinyobj::material_t& m, const std::string& mtl_path,
                                                    obj_model& model) {
     std::shared_ptr<material> made = material_from_mtl_colours(m, mtl_path, model);
-    if (m.normal_texname.empty()) return made;
+    const bool normals = !m.normal_texname.empty(), heights = !m.bump_texname.empty();
+    if (!normals && !heights) return made;
     const std::string where = mtl_path + ": material '" + m.name + "'";
-    const std::string file = model_file(std::filesystem::path(mtl_path).parent_path().string(), m.normal_texname);
+    if (normals && heights)
+        model.warnings.push_back(where + ": it has a normal map and a bump map: the normal map is used, the bump map '" +
+                                 token_text(m.bump_texname) + "' is ignored");
+    const std::string& name = normals ? m.normal_texname : m.bump_texname;
+    const char* what = normals ? "normal map" : "bump map";
+    const std::string file = model_file(std::filesystem::path(mtl_path).parent_path().string(), name);
     rtw_image picture;
     try {
         if (!picture.load(file)) {
-            model.warnings.push_back(where + ": normal map '" + token_text(m.normal_texname) + "' not found; the faces are flat");
+            model.warnings.push_back(where + ": " + what + " '" + token_text(name) + "' not found; the faces are flat");
             return made;
         }
     } catch (const scene_error& e) {
@@ -140,10 +149,17 @@ inline std::shared_ptr<material> material_from_mtl(const tinyobj::material_t& m,
     image_sampling s;
     s.wrap_u = s.wrap_v = image_sampling::wrap_mode::repeat;
     s.bilinear = true;
-    return std::make_shared<normal_mapped>(made, std::make_shared<image_texture>(picture.as_data(), s));
+    auto map = std::make_shared<image_texture>(picture.as_data(), s);
+    if (normals) return std::make_shared<normal_mapped>(made, map);
+    const double scale = m.bump_texopt.bump_multiplier;
+    if (!std::isfinite(scale)) {
+        model.warnings.push_back(where + ": its bump multiplier (-bm) is not finite; the faces are flat");
+        return made;
+    }
+    return std::make_shared<bump_mapped>(made, map, scale);
 }
 
-// The material of an MTL entry's colours and maps (all the rules but `norm`).
+// The material of an MTL entry's colours and maps (all the rules but `norm` and `bump`).
 inline std::shared_ptr<material> material_from_mtl_colours(const tinyobj::material_t& m, const std::string& mtl_path,
                                                            obj_model& model) {
     const std::string where = mtl_path + ": material '" + m.name + "'";
@@ -153,7 +169,6 @@ inline std::shared_ptr<material> material_from_mtl_colours(const tinyobj::materi
     auto unsupported = [&](const std::string& file, const char* what) {
         if (!file.empty()) model.warnings.push_back(where + ": " + what + " '" + file + "' is not supported yet and is ignored");
     };
-    unsupported(m.bump_texname, "bump map");
     unsupported(m.displacement_texname, "displacement map");
     unsupported(m.specular_texname, "map_Ks");
     unsupported(m.specular_highlight_texname, "map_Ns");

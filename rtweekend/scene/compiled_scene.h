@@ -53,6 +53,7 @@ class compiled_scene {
     struct normal_map {
         uint32_t texture = UINT32_MAX; // UINT32_MAX: none
         float scale = 1;
+        bool heights = false; // a bump map (material.h: bump_mapped): scale is its displacement's
     };
     std::vector<normal_map> normal_maps;
     // Metallic-roughness maps (material.h: metal_roughness with a map), by material index: which

@@ -269,11 +269,12 @@ class scene_compiler {
         const material* base = m;
         const auto* mapped = dynamic_cast<const normal_mapped*>(m);
         if (mapped) {
-            if (!mapped->base()) throw scene_error("normal_mapped material has no base material");
-            if (!mapped->normals()) throw scene_error("normal_mapped material has no normal map");
-            if (!std::isfinite(mapped->scale())) throw scene_error("normal_mapped scale must be finite");
+            const std::string kind = mapped->holds_heights() ? "bump_mapped" : "normal_mapped";
+            if (!mapped->base()) throw scene_error(kind + " material has no base material");
+            if (!mapped->normals()) throw scene_error(kind + (mapped->holds_heights() ? " material has no height map" : " material has no normal map"));
+            if (!std::isfinite(mapped->scale())) throw scene_error(kind + " scale must be finite");
             if (dynamic_cast<const normal_mapped*>(mapped->base().get()))
-                throw scene_error("normal_mapped material's base has a normal map of its own");
+                throw scene_error(kind + " material's base has a normal or bump map of its own");
             base = mapped->base().get();
         }
         compiled_material d = compile_material(*base, &out_.textures);
@@ -292,7 +293,7 @@ class scene_compiler {
         out_.materials.push_back(d);
         if (mapped) {
             out_.normal_maps.resize(out_.materials.size());
-            out_.normal_maps[index] = {out_.textures.add(*mapped->normals()), float(mapped->scale())};
+            out_.normal_maps[index] = {out_.textures.add(*mapped->normals()), float(mapped->scale()), mapped->holds_heights()};
         } else if (!out_.normal_maps.empty()) {
             out_.normal_maps.resize(out_.materials.size());
         }

@@ -9,7 +9,8 @@
 //   textured_light_radiance(scene, lc)       the radiance of a textured light at the point a light
 //                                            sample chose (light_set.h)
 //   shading_normal_at(scene, hit)            the hit's shading normal with its material's normal
-//                                            map applied (material.h: normal_mapped), or as it is
+//                                            or bump map applied (material.h: normal_mapped,
+//                                            bump_mapped), or as it is
 //
 // (u, v) by shape kind (scene/shapes/): a sphere's from its outward normal (book 2's get_sphere_uv:
 // u the angle around the y axis from -x, v from the south pole -y up); a quad's from its edges
@@ -72,6 +73,33 @@ inline vec3f textured_light_radiance(const compiled_scene& scene, const light_ch
     return detail::texture_at(scene, lc.texture, at);
 }
 
+namespace detail {
+// A bump map (material.h: bump_mapped): the normal of the surface displaced by d = scale h(u, v)
+// along N, cross(dp/du + dd/du N, dp/dv + dd/dv N), its slopes by central differences 1e-4 apart,
+// h a texel's mean channel; facing the ray as the hit's normals do. Left as it is where the
+// displaced tangents give no direction.
+inline vec3f bumped_normal(const compiled_scene& scene, const surface_hit& hit, const compiled_scene::normal_map& map,
+                           const vec3& dpdu, const vec3& dpdv) {
+    double u = 0, v = 0;
+    surface_coordinates(scene, hit, u, v);
+    const vec3 p = scene.origin + hit.p.to_double();
+    auto height = [&](double du, double dv) {
+        const vec3f c = scene.textures.eval(map.texture, float(u + du), float(v + dv), p);
+        return (double(c.x) + double(c.y) + double(c.z)) / 3;
+    };
+    constexpr double step = 1e-4;
+    const double dddu = map.scale * (height(step, 0) - height(-step, 0)) / (2 * step);
+    const double dddv = map.scale * (height(0, step) - height(0, -step)) / (2 * step);
+    const vec3 n = (hit.front_face ? hit.shading_normal : -hit.shading_normal).to_double();
+    vec3 m = cross(dpdu + dddu * n, dpdv + dddv * n);
+    const double lm = m.length();
+    if (!(lm > 0) || !std::isfinite(lm)) return hit.shading_normal;
+    m /= lm;
+    if (dot(m, n) < 0) m = -m; // a mirrored mapping: its tangents turn the other way
+    return vec3f(hit.front_face ? m : -m);
+}
+} // namespace detail
+
 // The normal map's texel c, n = (scale (2 c.x - 1), scale (2 c.y - 1), 2 c.z - 1), in the frame of
 // the outward shading normal N, T = dp/du made perpendicular to N, and B = dp/dv made
 // perpendicular to both (so a mirrored mapping turns B round with it); the result faces the ray
@@ -83,6 +111,7 @@ inline vec3f shading_normal_at(const compiled_scene& scene, const surface_hit& h
     if (map.texture == UINT32_MAX) return hit.shading_normal;
     vec3 dpdu, dpdv;
     if (!scene.surface_tangents(hit, dpdu, dpdv)) return hit.shading_normal;
+    if (map.heights) return detail::bumped_normal(scene, hit, map, dpdu, dpdv);
     const vec3f c = detail::texture_at(scene, map.texture, hit);
     const double x = map.scale * (2.0 * c.x - 1), y = map.scale * (2.0 * c.y - 1), z = 2.0 * c.z - 1;
     const vec3 n = (hit.front_face ? hit.shading_normal : -hit.shading_normal).to_double();
