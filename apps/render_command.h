@@ -158,6 +158,17 @@ inline rt::render_settings xml_path_settings(const options& opt) {
 inline std::vector<rt::point_light> xml_path_lights(const rt::whitted_scene& scene) {
     std::vector<rt::point_light> lights = scene.lights;
     for (rt::point_light& l : lights) l.intensity *= rt::pi;
+    // Spot lights (course_lights.h): a point light with a cone, half the course's full angles,
+    // falling off as a^4 between them. One that covers no angle sends no light.
+    for (const rt::spot_light& s : scene.spot_lights) {
+        if (!(s.coverage_degrees > 0)) continue;
+        rt::point_light l{s.position, s.intensity * rt::pi};
+        l.spot_direction = s.direction;
+        l.inner_cone = s.falloff_degrees * rt::pi / 360;
+        l.outer_cone = s.coverage_degrees * rt::pi / 360;
+        l.cone_exponent = 4;
+        lights.push_back(l);
+    }
     return lights;
 }
 // The same for directional lights: E cos kd in the course's shading, E pi cos kd / pi here.
@@ -241,12 +252,13 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 // A course scene through the path tracer (xml_path_settings says how), camera by camera.
 inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
                                    const std::vector<std::string>& outputs) {
-    // What the path tracer does not take from a course scene yet: the lights of homeworks 3 and 5
-    // and the texture maps of homework 4 are refused (an image without them would be wrong), the cameras' distribution settings are
-    // named in a warning (--spp replaces NumSamples; no lens).
-    if (!scene.spot_lights.empty() || !scene.area_lights.empty() || !scene.light_meshes.empty() ||
-        !scene.light_spheres.empty() || !scene.environment_lights.empty())
-        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's spot, area, object "
+    // What the path tracer does not take from a course scene yet: area, object and environment
+    // lights and the texture maps of homework 4 are refused (an image without them would be
+    // wrong); the cameras' distribution settings are named in a warning (--spp replaces
+    // NumSamples; no lens). Point, directional and spot lights carry over (xml_path_lights).
+    if (!scene.area_lights.empty() || !scene.light_meshes.empty() || !scene.light_spheres.empty() ||
+        !scene.environment_lights.empty())
+        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's area, object "
                               "or environment lights yet: render this scene in Whitted mode (without --integrator)");
     if (!scene.textured_objects.empty() || scene.background_texture)
         throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's texture maps yet: "

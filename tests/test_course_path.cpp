@@ -17,6 +17,7 @@
 
 #include <doctest/doctest.h>
 
+#include "render_command.h"
 #include "test_helpers.h"
 
 #include <cmath>
@@ -79,6 +80,28 @@ image render_text(const std::string& xml) {
     INFO((scene.warnings.empty() ? std::string() : scene.warnings[0]));
     REQUIRE(scene.warnings.empty());
     return render_whitted(scene, 0).img;
+}
+
+// A floor (y = 0, kd 0.5) under the given <Lights>, seen at one point from `at` (direct light
+// alone: MaxRecursionDepth 0).
+whitted_scene lit_floor(test::scratch_dir& dir, const std::string& at, const std::string& lights) {
+    return load_xml_scene(dir.write(
+        "s.xml", "<Scene><MaxRecursionDepth>0</MaxRecursionDepth>" + camera(at, "0 -0.5 -0.5", 4, renderer(true, true, false)) +
+                     "<Lights>" + lights + "</Lights><Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
+                     "</Material></Materials><VertexData>-20 0 -20 20 0 -20 20 0 20 -20 0 20</VertexData><Objects>"
+                     "<Mesh id=\"1\"><Material>1</Material><Faces>1 3 2 1 4 3</Faces></Mesh></Objects></Scene>"));
+}
+
+// The scene's first camera through our path tracer, with its lights as `render --integrator path`
+// converts them (xml_path_lights, xml_path_directional_lights): the direct light alone.
+double ours_direct(const whitted_scene& scene) {
+    const compiled_scene compiled = compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene),
+                                                  app::xml_path_directional_lights(scene));
+    render_settings settings;
+    settings.samples_per_pixel = 4;
+    settings.max_depth = 1;
+    settings.quiet = true;
+    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img).mean;
 }
 
 // The view factor from a point to a w x h rectangle in a parallel plane at distance c, the point
@@ -280,25 +303,42 @@ TEST_CASE("course path tracer: a directional light on a floor, kd E cos in the c
     // point (1, 0, 0) seen directly is 0.5 x 10 x 0.8944 = 4.472, in the course's path tracer and in
     // ours with E multiplied by pi (render's xml_path_directional_lights).
     test::scratch_dir dir("course_path_sun");
-    const whitted_scene scene = load_xml_scene(dir.write(
-        "s.xml", "<Scene><MaxRecursionDepth>0</MaxRecursionDepth>" + camera("1 0.5 0.5", "0 -0.5 -0.5", 4, renderer(true, true, false)) +
-                     "<Lights><DirectionalLight id=\"1\"><Direction>1 -2 0</Direction><Radiance>10 10 10</Radiance>"
-                     "</DirectionalLight></Lights><Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance>"
-                     "</Material></Materials><VertexData>-20 0 -20 20 0 -20 20 0 20 -20 0 20</VertexData><Objects>"
-                     "<Mesh id=\"1\"><Material>1</Material><Faces>1 3 2 1 4 3</Faces></Mesh></Objects></Scene>"));
+    const whitted_scene scene = lit_floor(dir, "1 0.5 0.5", "<DirectionalLight id=\"1\"><Direction>1 -2 0</Direction>"
+                                                              "<Radiance>10 10 10</Radiance></DirectionalLight>");
     REQUIRE(scene.warnings.empty());
     REQUIRE(scene.directional_lights.size() == 1);
     const double expected = 0.5 * 10 * 2 / std::sqrt(5.0);
     CHECK(mean_of(render_whitted(scene, 0).img).mean == doctest::Approx(expected).epsilon(1e-4));
-    std::vector<directional_light> suns = scene.directional_lights;
-    for (directional_light& l : suns) l.irradiance *= pi_d;
-    const compiled_scene compiled = compile_scene(scene.world, scene.cameras[0].position, {}, suns);
-    render_settings settings;
-    settings.samples_per_pixel = 4;
-    settings.max_depth = 1;
-    settings.quiet = true;
-    const image ours = path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img;
-    CHECK(mean_of(ours).mean == doctest::Approx(expected).epsilon(1e-4));
+    CHECK(ours_direct(scene) == doctest::Approx(expected).epsilon(1e-4));
+}
+
+TEST_CASE("course path tracer: a spot light on a floor, inside, between and outside its cones, in both") {
+    // A spot 2 above the floor (kd 0.5) shining down, intensity 100, coverage 60 and falloff 30
+    // degrees (full angles): at the floor point at angle theta from the axis, d = 2 / cos theta,
+    // so kd I s(theta) cos^3 theta / 4 with s = 1 within 15 degrees, 0 beyond 30, and
+    // ((cos theta - cos 30) / (cos 15 - cos 30))^4 between: in the course's path tracer, and in
+    // ours with the spot as render's xml_path_lights makes it (a point light with a cone,
+    // intensity times pi, cone exponent 4).
+    const double deg = pi_d / 180;
+    auto expected = [&](double theta) {
+        const double c = std::cos(theta), c15 = std::cos(15 * deg), c30 = std::cos(30 * deg);
+        const double s = c >= c15 ? 1 : c < c30 ? 0 : std::pow((c - c30) / (c15 - c30), 4);
+        return 0.5 * 100 * s * c * c * c / 4;
+    };
+    for (double theta_deg : {0.0, 10.0, 20.0, 25.0, 40.0}) {
+        CAPTURE(theta_deg);
+        const double x = 2 * std::tan(theta_deg * deg);
+        test::scratch_dir dir("course_path_spot");
+        const whitted_scene scene =
+            lit_floor(dir, std::to_string(x) + " 0.5 0.5",
+                      "<SpotLight id=\"1\"><Position>0 2 0</Position><Direction>0 -1 0</Direction><Intensity>100 100 100</Intensity>"
+                      "<CoverageAngle>60</CoverageAngle><FalloffAngle>30</FalloffAngle></SpotLight>");
+        REQUIRE(scene.warnings.empty());
+        REQUIRE(scene.spot_lights.size() == 1);
+        const double want = expected(theta_deg * deg);
+        CHECK(mean_of(render_whitted(scene, 0).img).mean == doctest::Approx(want).epsilon(2e-3));
+        CHECK(ours_direct(scene) == doctest::Approx(want).epsilon(2e-3));
+    }
 }
 
 } // namespace test_course_path

@@ -574,7 +574,10 @@ RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, co
             if (!(inner >= 0 && inner <= outer && outer > 0 && outer <= pi))
                 throw scene_error("spot light cones must satisfy 0 <= inner <= outer <= pi, outer > 0, got " +
                                   number_text(inner) + " and " + number_text(outer));
+            if (!(p.cone_exponent >= 1 && p.cone_exponent <= 1e6))
+                throw scene_error("spot light cone exponent must be in [1, 1e6], got " + number_text(p.cone_exponent));
             e.axis = vec3f(p.spot_direction / axis_length);
+            e.exponent = float(p.cone_exponent);
             e.cos_outer = float(std::cos(outer));
             // glTF's guard against a zero-width cone: at most 1000.
             e.inv_cone_width = float(1.0 / std::max(1e-3, std::cos(inner) - std::cos(outer)));

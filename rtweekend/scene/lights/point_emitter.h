@@ -8,6 +8,8 @@
 #include "../../core/vec3f.h"
 #include "../light_sampling.h"
 
+#include <cmath>
+
 namespace rt {
 
 struct point_emitter {
@@ -16,13 +18,17 @@ struct point_emitter {
     // half-angle and 1 / (cos inner - cos outer).
     vec3f axis{0, 0, 0};
     float cos_outer = -1, inv_cone_width = 0;
+    float exponent = 2; // of the fall-off between the cones
 
     // The share of the intensity sent along the unit direction d (from the light): 1 without a
-    // cone; a^2 with a = clamp((d . axis - cos outer) / (cos inner - cos outer), 0, 1) with one.
+    // cone; a^exponent with a = clamp((d . axis - cos outer) / (cos inner - cos outer), 0, 1)
+    // with one.
     float falloff(const vec3f& d) const {
         if (axis.x == 0 && axis.y == 0 && axis.z == 0) return 1;
         const float a = fmin_inline(fmax_inline((dot(d, axis) - cos_outer) * inv_cone_width, 0.0f), 1.0f);
-        return a * a;
+        if (exponent == 2) return a * a;
+        if (exponent == 4) return (a * a) * (a * a);
+        return std::pow(a, exponent);
     }
     // The fraction of the sphere the light shines into (for its power): the outer cone's.
     float solid_angle_share() const {
