@@ -38,11 +38,12 @@ std::shared_ptr<triangle_mesh> square(std::shared_ptr<material> mat, bool mirror
 // A texel whose normal is (sin 30, 0, cos 30): tilted 30 degrees towards +u.
 std::shared_ptr<texture> tilted() { return std::make_shared<solid_color>(0.5 + 0.25, 0.5, 0.5 + 0.5 * std::sqrt(0.75)); }
 
-color centre_normal(const hittable_list& world) {
+// The normal guide of the pixel whose ray goes from `from` through `at` (a 5 x 5 image's centre).
+color normal_seen(const hittable_list& world, const point3& from, const point3& at, double vfov) {
     camera cam = test::test_camera(5, 5, 1, 4); // pixel (2, 2): the ray through the centre
-    cam.lookfrom = point3(0, 0, 10);
-    cam.lookat = point3(0, 0, 0);
-    cam.vfov = 5;
+    cam.lookfrom = from;
+    cam.lookat = at;
+    cam.vfov = vfov;
     const camera_frame frame = cam.frame();
     const compiled_scene scene = compile_scene(world, frame.position, {});
     render_settings s;
@@ -50,6 +51,8 @@ color centre_normal(const hittable_list& world) {
     s.threads = 1;
     return render_guides(scene, frame, cam.sky(), s).normal.pixel(2, 2);
 }
+
+color centre_normal(const hittable_list& world) { return normal_seen(world, point3(0, 0, 10), point3(0, 0, 0), 5); }
 
 } // namespace
 
@@ -176,6 +179,36 @@ TEST_CASE("bump maps: a height ramp tilts a square's normal as worked by hand") 
     world.add(square(std::make_shared<bump_mapped>(grey, nullptr, 1.0)));
     camera cam = test::test_camera(2, 2, 1, 1);
     test::check_scene_error([&] { render(cam, world); }, {"bump_mapped material has no height map"});
+}
+
+TEST_CASE("normal maps on a smooth mesh: the frame turns smoothly across its triangles") {
+    // The square [-1, 1]^2 facing +z in two triangles, smooth shading (normals +z), texture
+    // coordinates (0, 0), (1, 0), (1, 1.5), (0, 1) at its corners (-1, -1), (1, -1), (1, 1),
+    // (-1, 1): the lower triangle's dp/du is (2, 0, 0), the upper's (2, -1, 0). Averaged at the
+    // corners (equal areas), the two shared corners' dp/du is (2, -0.5, 0), so on the diagonal
+    // between them the frame's T is (2, -0.5, 0) / |...| from both sides, and the constant texel
+    // tilted 30 degrees towards +u gives 0.5 T + cos 30 N there. Each triangle's own dp/du would
+    // give (0.5, 0, 0.866) below the diagonal and (0.447, -0.224, 0.866) above it.
+    auto mesh = std::make_shared<triangle_mesh>();
+    mesh->positions = {point3(-1, -1, 0), point3(1, -1, 0), point3(1, 1, 0), point3(-1, 1, 0)};
+    mesh->uvs = {{0, 0}, {1, 0}, {1, 1.5}, {0, 1}};
+    mesh->normals = {vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1)};
+    mesh->faces = {{0, 1, 2}, {0, 2, 3}};
+    mesh->face_uvs = mesh->faces;
+    mesh->face_normals = mesh->faces;
+    mesh->smooth_shading = true;
+    mesh->mat = std::make_shared<normal_mapped>(std::make_shared<lambertian>(color(0.5, 0.5, 0.5)), tilted());
+    hittable_list world;
+    world.add(mesh);
+    auto normal_at = [&](double x, double y) { return normal_seen(world, point3(x, y, 10), point3(x, y, 0), 0.01); };
+    const double len = std::sqrt(4.25), c30 = std::sqrt(0.75);
+    for (const auto& [x, y] : {std::pair{0.01, -0.01}, std::pair{-0.01, 0.01}}) {
+        CAPTURE(x);
+        const color n = normal_at(x, y);
+        CHECK(n.x() == doctest::Approx(0.5 * 2 / len).epsilon(0.01));
+        CHECK(n.y() == doctest::Approx(0.5 * -0.5 / len).epsilon(0.03));
+        CHECK(n.z() == doctest::Approx(c30).epsilon(1e-3));
+    }
 }
 
 } // namespace test_normal_map

@@ -282,11 +282,14 @@ RTWEEKEND_ENGINE_FUNCTION void compiled_scene::surface_coordinates(const surface
 
 RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::surface_tangents(const surface_hit& hit, vec3& dpdu, vec3& dpdv) const {
     if (hit.user_shape) return false;
-    if (hit.kind == shape_id<triangle_set>) return set<triangle_set>().surface_tangents(hit.index, dpdu, dpdv);
-    if (hit.kind != shape_id<instance_set> || hit.object_kind != shape_id<triangle_set>) return false;
+    const bool direct = hit.kind == shape_id<triangle_set>;
+    if (!direct && (hit.kind != shape_id<instance_set> || hit.object_kind != shape_id<triangle_set>)) return false;
+    double u = 0, v = 0;
+    surface_coordinates(hit, u, v);
+    if (direct) return set<triangle_set>().surface_tangents(hit.index, u, v, dpdu, dpdv);
     const instance_set& instances = set<instance_set>();
     const compiled_scene& object = *objects[instances.object[hit.index]];
-    if (!object.set<triangle_set>().surface_tangents(hit.object_index, dpdu, dpdv)) return false;
+    if (!object.set<triangle_set>().surface_tangents(hit.object_index, u, v, dpdu, dpdv)) return false;
     const affine3f& to_world = instances.to_world[hit.index];
     dpdu = to_world.vector(vec3f(dpdu)).to_double();
     dpdv = to_world.vector(vec3f(dpdv)).to_double();

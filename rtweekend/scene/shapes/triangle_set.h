@@ -11,6 +11,7 @@
 #include "../../core/scene_error.h"
 #include "../../core/simd.h"
 #include "../../core/vec3f.h"
+#include "../../material.h"
 #include "../../mesh.h"
 #include "../../triangle.h"
 #include "../../vec3.h"
@@ -62,6 +63,8 @@ struct triangle_set {
         bool smooth = false;
         std::array<std::array<float, 2>, 3> uv{}; // texture coordinates at the vertices, else zero
         bool has_uv = false;
+        std::array<vec3f, 3> dpdu{}; // smooth dp/du at the vertices (normal- or bump-mapped smooth meshes)
+        bool has_dpdu = false;
     };
     // The book's triangle, and a triangle_mesh (mesh.h) face by face, under the map xf. A single
     // triangle of zero area is an error; a mesh's are left out and counted (degenerate).
@@ -98,6 +101,11 @@ struct triangle_set {
     // Texture coordinates: coordinate c (0: u, 1: v) of vertex k of triangle i is uv[2 * k + c][i],
     // when some mesh has them; else empty (and every triangle's (u, v) is 0, as in the book).
     std::array<std::vector<float>, 6> uv;
+    // Smooth dp/du at the vertices, laid out like `vertex`, when some smooth mesh with texture
+    // coordinates has a normal or bump map; else empty. Each vertex's is the area-weighted mean of
+    // its faces' dp/du, so that a map's frame turns smoothly across a curved mesh's triangles
+    // instead of in steps (surface_tangents). Zero for the triangles that have none.
+    std::array<std::vector<float>, 9> dpdu_at;
     // Back-face culling: 1 where a hit on the back face is skipped; empty until
     // mark_culled.
     std::vector<float> cull;
@@ -114,6 +122,10 @@ struct triangle_set {
     void append_uv(const std::array<std::array<float, 2>, 3>& t) {
         for (size_t k = 0; k < 3; ++k)
             for (size_t c = 0; c < 2; ++c) uv[2 * k + c].push_back(t[k][c]);
+    }
+    void append_dpdu(const std::array<vec3f, 3>& d) {
+        for (int k = 0; k < 3; ++k)
+            for (int axis = 0; axis < 3; ++axis) dpdu_at[size_t(3 * k + axis)].push_back(d[size_t(k)][axis]);
     }
 
     size_t size() const { return count; }
@@ -134,10 +146,11 @@ struct triangle_set {
     // The texture coordinates at the hit point: the vertices' uv weighted by its barycentric
     // coordinates; 0 when the triangles have none (as the book's shapes without coordinates).
     void surface_coordinates(const surface_hit& hit, double& u, double& v) const;
-    // How the point moves with the texture coordinates on triangle i: dp/du and dp/dv, from its
-    // corners and their (u, v). False when the triangles have no coordinates, or triangle i's are
-    // degenerate (all on a line).
-    bool surface_tangents(uint32_t i, vec3& dpdu, vec3& dpdv) const;
+    // How the point moves with the texture coordinates on triangle i at the point of coordinates
+    // (u, v): dp/du and dp/dv, from its corners and their (u, v); dp/du interpolated from the
+    // vertices' smooth ones where the triangle has them (dpdu_at). False when the triangles have
+    // no coordinates, or triangle i's are degenerate (all on a line).
+    bool surface_tangents(uint32_t i, double u, double v, vec3& dpdu, vec3& dpdv) const;
 
     // An emitting triangle is light-sampled by area.
     static constexpr bool light_sampled = true;
@@ -158,6 +171,7 @@ struct triangle_set {
         for (const auto& v : vertex) b += v.size() * sizeof(float);
         for (const auto& v : normal) b += v.size() * sizeof(float);
         for (const auto& v : uv) b += v.size() * sizeof(float);
+        for (const auto& v : dpdu_at) b += v.size() * sizeof(float);
         return b;
     }
 
@@ -194,6 +208,41 @@ bool add_triangle(Compiler& compiler, const point3& a, const point3& b, const po
     return true;
 }
 
+// The smooth dp/du of each texture-coordinate vertex of a smooth mesh with a normal or bump map
+// (normal_mapped), under the map xf: the area-weighted mean of the dp/du of the faces that use it
+// (triangle_set::dpdu_at). Empty for any other mesh, which keeps each triangle's own.
+inline std::vector<vec3> vertex_dpdu(const triangle_mesh& mesh, const affine_map& xf) {
+    if (!mesh.smooth_shading || mesh.face_uvs.empty() || mesh.uvs.empty() || !dynamic_cast<const normal_mapped*>(mesh.mat.get()))
+        return {};
+    std::vector<vec3> sum(mesh.uvs.size(), vec3(0, 0, 0));
+    std::vector<double> weight(mesh.uvs.size(), 0.0);
+    for (size_t i = 0; i < mesh.faces.size() && i < mesh.face_uvs.size(); ++i) {
+        const auto& f = mesh.faces[i];
+        const auto& fu = mesh.face_uvs[i];
+        if (f[0] >= mesh.positions.size() || f[1] >= mesh.positions.size() || f[2] >= mesh.positions.size() ||
+            fu[0] >= mesh.uvs.size() || fu[1] >= mesh.uvs.size() || fu[2] >= mesh.uvs.size())
+            continue;
+        const point3 p0 = xf.point(mesh.positions[f[0]]);
+        const vec3 e1 = xf.point(mesh.positions[f[1]]) - p0, e2 = xf.point(mesh.positions[f[2]]) - p0;
+        const double du1 = mesh.uvs[fu[1]][0] - mesh.uvs[fu[0]][0], dv1 = mesh.uvs[fu[1]][1] - mesh.uvs[fu[0]][1];
+        const double du2 = mesh.uvs[fu[2]][0] - mesh.uvs[fu[0]][0], dv2 = mesh.uvs[fu[2]][1] - mesh.uvs[fu[0]][1];
+        const double det = du1 * dv2 - du2 * dv1;
+        if (!(std::fabs(det) > 0)) continue;
+        const vec3 d = (dv2 * e1 - dv1 * e2) / det;
+        const double area = 0.5 * cross(e1, e2).length();
+        if (!finite3(d) || !(area > 0) || !std::isfinite(area)) continue;
+        for (uint32_t k : fu) {
+            sum[k] += area * d;
+            weight[k] += area;
+        }
+    }
+    for (size_t k = 0; k < sum.size(); ++k) {
+        sum[k] = weight[k] > 0 ? sum[k] / weight[k] : vec3(0, 0, 0);
+        if (!finite3(sum[k]) || !is_finite(vec3f(sum[k]))) sum[k] = vec3(0, 0, 0);
+    }
+    return sum;
+}
+
 } // namespace detail
 
 template <class Compiler>
@@ -210,6 +259,7 @@ void triangle_set::add(Compiler& compiler, const triangle_mesh& mesh, const affi
     if (!mesh.mat) throw scene_error("triangle mesh has no material");
     const uint32_t m = compiler.material_index(mesh.mat.get());
     std::vector<input>& inputs = compiler.template inputs<triangle_set>();
+    const std::vector<vec3> smooth_dpdu = detail::vertex_dpdu(mesh, xf);
     for (size_t i = 0; i < mesh.faces.size(); ++i) {
         const auto& f = mesh.faces[i];
         for (uint32_t v : f)
@@ -249,6 +299,13 @@ void triangle_set::add(Compiler& compiler, const triangle_mesh& mesh, const affi
             }
             t.has_uv = true;
         }
+        if (!smooth_dpdu.empty() && i < mesh.face_uvs.size()) {
+            for (size_t k = 0; k < 3; ++k) {
+                const uint32_t index = mesh.face_uvs[i][k];
+                if (index < smooth_dpdu.size()) t.dpdu[k] = vec3f(smooth_dpdu[index]);
+            }
+            t.has_dpdu = true;
+        }
     }
 }
 
@@ -256,11 +313,13 @@ template <class Scene>
 void triangle_set::lay_out(const Scene&, const std::vector<input>& inputs, const std::vector<uint32_t>& order) {
     count = order.size();
     distinct = inputs.size();
-    bool any_smooth = false, any_uv = false;
-    for (const input& t : inputs) any_smooth = any_smooth || t.smooth, any_uv = any_uv || t.has_uv;
+    bool any_smooth = false, any_uv = false, any_dpdu = false;
+    for (const input& t : inputs)
+        any_smooth = any_smooth || t.smooth, any_uv = any_uv || t.has_uv, any_dpdu = any_dpdu || t.has_dpdu;
     auto push = [&](const input& t) {
         append(t.v, t.material);
         if (any_uv) append_uv(t.uv);
+        if (any_dpdu) append_dpdu(t.dpdu);
         if (!any_smooth) return;
         std::array<vec3f, 3> n = t.n;
         if (!t.smooth) {
@@ -367,7 +426,7 @@ void triangle_set::complete_hit(const Scene&, const ray3f& ray, float t, uint32_
     hit.material = material[i];
 }
 
-inline bool triangle_set::surface_tangents(uint32_t i, vec3& dpdu, vec3& dpdv) const {
+inline bool triangle_set::surface_tangents(uint32_t i, double u, double v, vec3& dpdu, vec3& dpdv) const {
     if (uv[0].empty()) return false;
     // p - p0 = (u - u0) dp/du + (v - v0) dp/dv across the triangle: two edges, two equations each.
     const vec3 e1 = corner(1, i) - corner(0, i), e2 = corner(2, i) - corner(0, i);
@@ -377,6 +436,16 @@ inline bool triangle_set::surface_tangents(uint32_t i, vec3& dpdu, vec3& dpdv) c
     if (!(std::fabs(det) > 0)) return false;
     dpdu = (dv2 * e1 - dv1 * e2) / det;
     dpdv = (du1 * e2 - du2 * e1) / det;
+    if (!dpdu_at[0].empty()) {
+        // The point's barycentric weights from its (u, v): (u - u0, v - v0) = b1 (du1, dv1) + b2 (du2, dv2).
+        const double b1 = ((u - uv[0][i]) * dv2 - (v - uv[1][i]) * du2) / det;
+        const double b2 = ((v - uv[1][i]) * du1 - (u - uv[0][i]) * dv1) / det;
+        auto at = [&](int k) {
+            return vec3(dpdu_at[size_t(3 * k)][i], dpdu_at[size_t(3 * k + 1)][i], dpdu_at[size_t(3 * k + 2)][i]);
+        };
+        const vec3 smooth = (1 - b1 - b2) * at(0) + b1 * at(1) + b2 * at(2);
+        if (smooth.length_squared() > 0 && finite3(smooth)) dpdu = smooth;
+    }
     return std::isfinite(dpdu.x() + dpdu.y() + dpdu.z() + dpdv.x() + dpdv.y() + dpdv.z());
 }
 
