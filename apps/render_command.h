@@ -178,6 +178,22 @@ inline std::vector<rt::directional_light> xml_path_directional_lights(const rt::
     return lights;
 }
 
+// A course scene compiled for the path tracer around its first camera, with its point,
+// directional and spot lights (above) and its area lights: squares no ray hits, radiance times pi
+// as for the others, their sides along the course's frame about the normal (course_lights.h).
+inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
+    rt::compiled_scene compiled = rt::compile_scene(scene.world, scene.cameras[0].position, xml_path_lights(scene),
+                                                    xml_path_directional_lights(scene));
+    for (const rt::area_light& l : scene.area_lights) {
+        const double len = l.normal.length();
+        if (!(len > 0) || !std::isfinite(len)) throw rt::scene_error("area light normal must be a non-zero finite vector");
+        rt::vec3 u, v;
+        rt::course_frame(l.normal / len, u, v);
+        rt::add_hidden_square_light(compiled, l.position, l.size * u, l.size * v, l.radiance * rt::pi);
+    }
+    return compiled;
+}
+
 inline rt::render_settings whitted_settings(const options& opt) {
     rt::render_settings settings = rt::whitted_renderer::defaults();
     settings.threads = opt.threads.value_or(0);
@@ -252,14 +268,13 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 // A course scene through the path tracer (xml_path_settings says how), camera by camera.
 inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
                                    const std::vector<std::string>& outputs) {
-    // What the path tracer does not take from a course scene yet: area, object and environment
-    // lights and the texture maps of homework 4 are refused (an image without them would be
-    // wrong); the cameras' distribution settings are named in a warning (--spp replaces
-    // NumSamples; no lens). Point, directional and spot lights carry over (xml_path_lights).
-    if (!scene.area_lights.empty() || !scene.light_meshes.empty() || !scene.light_spheres.empty() ||
-        !scene.environment_lights.empty())
-        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's area, object "
-                              "or environment lights yet: render this scene in Whitted mode (without --integrator)");
+    // What the path tracer does not take from a course scene yet: object and environment lights
+    // and the texture maps of homework 4 are refused (an image without them would be wrong); the
+    // cameras' distribution settings are named in a warning (--spp replaces NumSamples; no lens).
+    // Point, directional, spot and area lights carry over (xml_path_compiled).
+    if (!scene.light_meshes.empty() || !scene.light_spheres.empty() || !scene.environment_lights.empty())
+        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's object or environment "
+                              "lights yet: render this scene in Whitted mode (without --integrator)");
     if (!scene.textured_objects.empty() || scene.background_texture)
         throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's texture maps yet: "
                               "render this scene in Whitted mode (without --integrator)");
@@ -274,8 +289,7 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     settings.stop = &interrupt_requested;
     const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
     // One compiled scene for every camera, around the first (as the Whitted integrator's).
-    const rt::compiled_scene compiled = rt::compile_scene(scene.world, scene.cameras[0].position, xml_path_lights(scene),
-                                                          xml_path_directional_lights(scene));
+    const rt::compiled_scene compiled = xml_path_compiled(scene);
     const size_t cameras = scene.cameras.size();
     for (size_t i = 0; i < cameras; ++i) {
         exit_if_interrupted_before(i, cameras);

@@ -116,10 +116,7 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
         const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
         // One compiled scene for every camera, around the first, as render compiles it (every
         // rank compiles it; a failure anywhere is agreed on).
-        const rt::compiled_scene compiled = rt::mpi::together(comm, [&] {
-            return rt::compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene),
-                                     app::xml_path_directional_lights(scene));
-        });
+        const rt::compiled_scene compiled = rt::mpi::together(comm, [&] { return app::xml_path_compiled(scene); });
         for (const rt::view_camera& c : scene.cameras) {
             rt::camera_frame frame = rt::view_camera_frame(c);
             if (opt.filter) frame.filter = *opt.filter;

@@ -93,16 +93,16 @@ whitted_scene lit_floor(test::scratch_dir& dir, const std::string& at, const std
 }
 
 // The scene's first camera through our path tracer, with its lights as `render --integrator path`
-// converts them (xml_path_lights, xml_path_directional_lights): the direct light alone.
-double ours_direct(const whitted_scene& scene) {
-    const compiled_scene compiled = compile_scene(scene.world, scene.cameras[0].position, app::xml_path_lights(scene),
-                                                  app::xml_path_directional_lights(scene));
+// converts them (xml_path_compiled): the direct light alone, its mean over the pixels.
+pixel_mean ours_direct_mean(const whitted_scene& scene, int samples) {
+    const compiled_scene compiled = app::xml_path_compiled(scene);
     render_settings settings;
-    settings.samples_per_pixel = 4;
+    settings.samples_per_pixel = samples;
     settings.max_depth = 1;
     settings.quiet = true;
-    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img).mean;
+    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img);
 }
+double ours_direct(const whitted_scene& scene) { return ours_direct_mean(scene, 4).mean; }
 
 // The view factor from a point to a w x h rectangle in a parallel plane at distance c, the point
 // below one corner (Howell's catalogue of configuration factors, B-3; the form given by Hamilton
@@ -339,6 +339,38 @@ TEST_CASE("course path tracer: a spot light on a floor, inside, between and outs
         CHECK(mean_of(render_whitted(scene, 0).img).mean == doctest::Approx(want).epsilon(2e-3));
         CHECK(ours_direct(scene) == doctest::Approx(want).epsilon(2e-3));
     }
+}
+
+TEST_CASE("course path tracer: an area light over a floor, kd L pi F in both, and no ray sees it") {
+    // A square <AreaLight> of size 2 and radiance 100 at height 1 over the floor's point the
+    // camera sees: irradiance L pi F with F = 4 x the corner view factor (0.5541), so kd L pi F
+    // (kd 0.5) in the course's units (f = kd), and the same in ours (radiance times pi, f = kd / pi),
+    // the light found by next-event estimation alone. Two-sided: the same with its normal turned.
+    const double expected = 0.5 * 100 * pi_d * 4 * corner_view_factor(1, 1, 1);
+    for (const char* normal : {"0 -1 0", "0 1 0"}) {
+        CAPTURE(normal);
+        test::scratch_dir dir("course_path_area");
+        const whitted_scene scene =
+            lit_floor(dir, "0 0.5 0.5",
+                      std::string("<AreaLight id=\"1\"><Position>0 1 0</Position><Normal>") + normal +
+                          "</Normal><Size>2</Size><Radiance>100 100 100</Radiance></AreaLight>");
+        REQUIRE(scene.warnings.empty());
+        REQUIRE(scene.area_lights.size() == 1);
+        const pixel_mean ours = ours_direct_mean(scene, 1024);
+        INFO(ours.mean << " +- " << ours.error << ", expected " << expected);
+        CHECK(std::fabs(ours.mean - expected) <= 5 * ours.error + 2e-3 * expected);
+        CHECK(ours.error < 0.02 * expected);
+        const pixel_mean course = mean_of(render_whitted(scene, 0).img);
+        CHECK(std::fabs(course.mean - expected) <= 5 * course.error + 0.02 * expected);
+    }
+    // Hidden from camera rays: a small square across the camera's ray, facing it (radiance times
+    // pi would show 314 there); the camera sees through it the floor it lights, some 8.
+    test::scratch_dir dir("course_path_area_seen");
+    const whitted_scene across = lit_floor(dir, "0 0.5 0.5", "<AreaLight id=\"1\"><Position>0 0.25 0.25</Position>"
+                                                           "<Normal>0 1 1</Normal><Size>0.2</Size><Radiance>100 100 100</Radiance></AreaLight>");
+    const double seen = ours_direct(across);
+    CHECK(seen > 1);
+    CHECK(seen < 20);
 }
 
 } // namespace test_course_path

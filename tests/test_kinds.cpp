@@ -249,6 +249,11 @@ light example(kind_tag<sphere_emitter>) { return {sphere_emitter{{0, 0, -3}, 1},
 light example(kind_tag<quad_emitter>) { return {quad_emitter{{-1, -1, -3}, {2, 0, 0}, {0, 2, 0}}, {1, 1, 1}}; }
 light example(kind_tag<triangle_emitter>) { return {triangle_emitter{{-1, -1, -3}, {1, -1, -3}, {0, 1, -3}}, {1, 1, 1}}; }
 light example(kind_tag<point_emitter>) { return {point_emitter{{0, 0, -3}}, {1, 1, 1}}; }
+light example(kind_tag<hidden_square_emitter>) {
+    light l{hidden_square_emitter{{0, 0, -3}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1}, 4}, {1, 1, 1}};
+    l.two_sided = true;
+    return l;
+}
 light example(kind_tag<directional_emitter>) { return {directional_emitter{normalize(vec3f{1, 2, 3}), {0, 0, -3}, 2}, {1, 1, 1}}; }
 
 // Its area in closed form.
@@ -257,6 +262,7 @@ float area_of(kind_tag<quad_emitter>) { return 4; }
 float area_of(kind_tag<triangle_emitter>) { return 2; }
 float area_of(kind_tag<point_emitter>) { return 0; }
 float area_of(kind_tag<directional_emitter>) { return 0; }
+float area_of(kind_tag<hidden_square_emitter>) { return 0; } // a delta light: sampled, never met
 
 template <class K>
 void check_light_kind() {

@@ -20,11 +20,12 @@
 //
 // and one entry in light_kinds below. Emitting shapes become lights of the kind their shape kind
 // names (scene/shape_kinds.h: light_of); point and directional lights come from the scene
-// description.
+// description, hidden squares from the course's scenes (add_hidden_square_light).
 
 #include "../core/kind_list.h"
 #include "leaf_query.h"
 #include "lights/directional_emitter.h"
+#include "lights/hidden_square_emitter.h"
 #include "lights/point_emitter.h"
 #include "lights/quad_emitter.h"
 #include "lights/sphere_emitter.h"
@@ -36,7 +37,8 @@
 
 namespace rt {
 
-using light_kinds = kind_list<sphere_emitter, quad_emitter, triangle_emitter, point_emitter, directional_emitter>;
+using light_kinds =
+    kind_list<sphere_emitter, quad_emitter, triangle_emitter, point_emitter, directional_emitter, hidden_square_emitter>;
 
 // One light: where it is (its kind's own record) and what it emits. Positions are relative to the
 // scene origin, in float, as the shapes'.

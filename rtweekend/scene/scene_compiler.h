@@ -48,6 +48,26 @@ RTWEEKEND_ENGINE_FUNCTION compiled_scene compile_scene(const hittable& world, co
                                                        const std::vector<point_light>& point_lights,
                                                        const std::vector<directional_light>& directional_lights = {});
 
+// Adds a light no ray can hit to a compiled scene: a parallelogram of sides edge_u and edge_v
+// centred at `centre` (world space), radiance Le from both faces, found by light sampling alone
+// (scene/lights/hidden_square_emitter.h; CENG795's <AreaLight>). Throws scene_error on a
+// non-finite or degenerate square or radiance.
+inline void add_hidden_square_light(compiled_scene& scene, const point3& centre, const vec3& edge_u, const vec3& edge_v,
+                                    const color& radiance) {
+    if (!finite3(centre) || !finite3(edge_u) || !finite3(edge_v))
+        throw scene_error("area light corners must be finite, got centre " + point_text(centre));
+    check_color(radiance, "area light radiance");
+    const vec3 n = cross(edge_u, edge_v);
+    const double area = n.length();
+    if (!(area > 0) || !std::isfinite(area) || !(area < 1e30)) throw scene_error("area light must have a finite, non-zero area");
+    light l;
+    l.emitter = hidden_square_emitter{vec3f(centre - scene.origin), vec3f(edge_u), vec3f(edge_v), vec3f(n / area), float(area)};
+    l.emission = vec3f(radiance);
+    l.two_sided = true;
+    scene.lights.add(l);
+    scene.lights.finish();
+}
+
 // The table entry for the material a user's hittable reported at a hit (compiled on the spot).
 RTWEEKEND_ENGINE_FUNCTION compiled_material compile_reported_material(const hit_record& rec);
 
