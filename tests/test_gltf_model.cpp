@@ -482,6 +482,14 @@ TEST_CASE("glTF models: one warning for what is not rendered as written, one err
           "emissiveFactor times emissiveStrength is too large for single precision");
     fails(gltf_text(R"("materials":[{}],"meshes":[)" + square_mesh + R"(],"nodes":[{"mesh":0,"scale":[0,1,1]}],"scenes":[{"nodes":[0]}])"),
           "placed by a singular matrix");
+    // Found by the gltf fuzzer: a light index of 5.6e77, which tinygltf's GetNumberAsInt would
+    // convert to int (undefined); and a fractional one.
+    for (const char* light : {"5.6e77", "0.5", "-1"}) {
+        CAPTURE(light);
+        fails(gltf_text(R"("materials":[{}],"meshes":[)" + square_mesh + R"(],"nodes":[{"mesh":0},{"extensions":{"KHR_lights_punctual":{"light":)" +
+                        std::string(light) + R"(}}}],"scenes":[{"nodes":[0,1]}],"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point"}]}})"),
+              "node 1: KHR_lights_punctual light must be a whole number from 0");
+    }
     test::check_one_line_error([] { load_gltf_model("/nonexistent/model.glb"); }, "/nonexistent/model.glb", "cannot open");
 }
 

@@ -292,8 +292,15 @@ class gltf_reader {
         if (ext == n.extensions.end()) return;
         const tinygltf::Value& v = ext->second.Get("light");
         if (!v.IsNumber()) fail("node " + std::to_string(index) + ": KHR_lights_punctual names no light");
-        const tinygltf::Light& l = at(m_.lights, v.GetNumberAsInt(), "light", "node " + std::to_string(index));
-        const std::string name = "light " + std::to_string(v.GetNumberAsInt());
+        // The index as a double first: tinygltf's GetNumberAsInt converts a real such as 5e77 to int,
+        // which is undefined (a fuzzer's finding).
+        const double number = v.GetNumberAsDouble();
+        if (!(number >= 0 && number <= 2147483647.0) || number != std::floor(number))
+            fail("node " + std::to_string(index) + ": KHR_lights_punctual light must be a whole number from 0, got " +
+                 number_text(number));
+        const int light_index = int(number);
+        const tinygltf::Light& l = at(m_.lights, light_index, "light", "node " + std::to_string(index));
+        const std::string name = "light " + std::to_string(light_index);
         color c(1, 1, 1);
         if (l.color.size() == 3) c = color(l.color[0], l.color[1], l.color[2]);
         else if (!l.color.empty()) fail(name + ": a colour has 3 numbers");
