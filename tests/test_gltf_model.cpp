@@ -482,6 +482,11 @@ TEST_CASE("glTF models: one warning for what is not rendered as written, one err
           "emissiveFactor times emissiveStrength is too large for single precision");
     fails(gltf_text(R"("materials":[{}],"meshes":[)" + square_mesh + R"(],"nodes":[{"mesh":0,"scale":[0,1,1]}],"scenes":[{"nodes":[0]}])"),
           "placed by a singular matrix");
+    // Found by the gltf fuzzer: a picture in a buffer view longer than its buffer (tinygltf hands
+    // the view to the image loader unchecked).
+    fails(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"data:application/octet-stream;base64,AAAAAA=="}],)"
+          R"("bufferViews":[{"buffer":0,"byteLength":1000}],"images":[{"bufferView":0,"mimeType":"image/png"}]})",
+          "image 0: its buffer view runs past the end of its buffer");
     // Found by the gltf fuzzer: a light index of 5.6e77, which tinygltf's GetNumberAsInt would
     // convert to int (undefined); and a fractional one.
     for (const char* light : {"5.6e77", "0.5", "-1"}) {

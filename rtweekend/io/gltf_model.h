@@ -94,6 +94,7 @@ RTWEEKEND_ENGINE_FUNCTION gltf_model decode_gltf_model(const std::string& bytes,
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -665,9 +666,21 @@ class gltf_reader {
 };
 
 // tinygltf hands over each picture's bytes undecoded: they are decoded as the renderer's other
-// textures are, and only when a material uses them.
-inline bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                               const unsigned char* bytes, int size, void*) {
+// textures are, and only when a material uses them. `model` is the model being read: a picture in
+// a buffer view comes with the view's length unchecked against its buffer (tinygltf 2.5 does not;
+// a fuzzer's finding read past the buffer), so the view is checked here first.
+inline bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                               const unsigned char* bytes, int size, void* model) {
+    if (image->bufferView >= 0 && model) {
+        // tinygltf has checked both indices before calling.
+        const auto& m = *static_cast<const tinygltf::Model*>(model);
+        const tinygltf::BufferView& view = m.bufferViews[size_t(image->bufferView)];
+        const size_t buffer = m.buffers[size_t(view.buffer)].data.size();
+        if (view.byteOffset > buffer || view.byteLength > buffer - view.byteOffset || view.byteLength > size_t(INT32_MAX)) {
+            if (err) *err += "image " + std::to_string(index) + ": its buffer view runs past the end of its buffer\n";
+            return false;
+        }
+    }
     if (bytes && size > 0) image->image.assign(bytes, bytes + size);
     return true;
 }
@@ -707,9 +720,9 @@ inline std::string gltf_message(const std::string& text) {
 
 RTWEEKEND_ENGINE_FUNCTION gltf_model decode_gltf_model(const std::string& bytes, const std::string& path) {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(detail::keep_encoded_image, nullptr);
-    loader.SetFsCallbacks({detail::gltf_file_exists, detail::gltf_expand_path, detail::gltf_read_file, detail::gltf_write_file, nullptr});
     tinygltf::Model m;
+    loader.SetImageLoader(detail::keep_encoded_image, &m);
+    loader.SetFsCallbacks({detail::gltf_file_exists, detail::gltf_expand_path, detail::gltf_read_file, detail::gltf_write_file, nullptr});
     std::string err, warn;
     const std::string dir = std::filesystem::path(path).parent_path().string();
     if (bytes.size() >= 0xFFFFFFFFull) throw scene_error(path + ": a glTF file is at most 4 GiB");
