@@ -279,13 +279,15 @@ TEST_CASE("glTF models: an emitter's radiance, its texture's texels the glTF way
                                  R"("images":[{"uri":"data:image/png;base64,)" + base64(png) + R"("}],)" + one_node;
         return dir.write("s.gltf", gltf_text(rest, square_buffer(u_max)));
     };
-    auto render_front = [&](const std::string& path) {
+    // The square head-on, in the dark or under a white sky, `spp` samples a pixel.
+    auto render_front = [&](const std::string& path, double sky = 0, int spp = 4) {
         scene_description s = load_model_scene(path);
-        s.cam = test::test_camera(16, 16, 4, 3);
+        CHECK(s.warnings.empty() == (sky > 0)); // the lit materials below are read as written
+        s.cam = test::test_camera(16, 16, spp, 3);
         s.cam.lookfrom = point3(0, 0, 20);
         s.cam.lookat = point3(0, 0, 0);
         s.cam.vfov = 5.6; // half-height 20 tan 2.8 deg = 0.98: the square fills the view
-        s.cam.background = color(0, 0, 0);
+        s.cam.background = color(sky, sky, sky);
         hittable_list world;
         world.add(std::make_shared<hittable_list>(s.world));
         return test::render_checked(s.cam, world).img;
@@ -306,16 +308,8 @@ TEST_CASE("glTF models: an emitter's radiance, its texture's texels the glTF way
     }
     { // The base colour texture on a smooth metal (metallic 1, roughness 0) under a white sky,
       // seen head-on: Schlick's Fresnel at normal incidence is the base colour itself.
-        const std::string path = scene_with(R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"roughnessFactor":0}})", 1);
-        scene_description s = load_model_scene(path);
-        s.cam = test::test_camera(16, 16, 4, 3);
-        s.cam.lookfrom = point3(0, 0, 20);
-        s.cam.lookat = point3(0, 0, 0);
-        s.cam.vfov = 5.6;
-        s.cam.background = color(1, 1, 1);
-        hittable_list world;
-        world.add(std::make_shared<hittable_list>(s.world));
-        const image img = test::render_checked(s.cam, world).img;
+        const image img =
+            render_front(scene_with(R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"roughnessFactor":0}})", 1), 1);
         CHECK(img.pixel(3, 8).x() == doctest::Approx(1).epsilon(1e-3));
         CHECK(img.pixel(3, 8).z() == doctest::Approx(0).epsilon(1e-3));
         CHECK(img.pixel(12, 8).x() == doctest::Approx(0).epsilon(1e-3));
@@ -324,18 +318,9 @@ TEST_CASE("glTF models: an emitter's radiance, its texture's texels the glTF way
     { // The picture as a metallicRoughnessTexture (read as data): blue 0, green 0 on the left, a
       // smooth dielectric base (the clear coat's 0.04 head-on, the base colour c under it:
       // 0.04 + 0.96 c under a white sky); blue 1, green 0 on the right, a smooth metal of colour c.
-        const std::string path = scene_with(R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.6,0.3,1],)"
-                                            R"("metallicRoughnessTexture":{"index":0}}})", 1);
-        scene_description s = load_model_scene(path);
-        CHECK(s.warnings.empty());
-        s.cam = test::test_camera(16, 16, 16, 3);
-        s.cam.lookfrom = point3(0, 0, 20);
-        s.cam.lookat = point3(0, 0, 0);
-        s.cam.vfov = 5.6;
-        s.cam.background = color(1, 1, 1);
-        hittable_list world;
-        world.add(std::make_shared<hittable_list>(s.world));
-        const image img = test::render_checked(s.cam, world).img;
+        const image img = render_front(scene_with(R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.6,0.3,1],)"
+                                                  R"("metallicRoughnessTexture":{"index":0}}})", 1),
+                                       1, 16);
         CHECK(img.pixel(12, 8).x() == doctest::Approx(0.9).epsilon(1e-3));
         CHECK(img.pixel(12, 8).z() == doctest::Approx(0.3).epsilon(1e-3));
         CHECK(img.pixel(3, 8).x() == doctest::Approx(0.04 + 0.96 * 0.9).epsilon(1e-2));
