@@ -65,6 +65,24 @@ TEST_CASE("metallic-roughness map: a constant map is the material with the produ
     CHECK(scene.materials[0].texture != no_texture);
 }
 
+TEST_CASE("metallic-roughness map: two mapped materials of constant colours keep their own colours") {
+    // The compiler gives each a constant texture of its base colour (so that textured() reads the
+    // map); the second must not be handed the first's.
+    auto map = std::make_shared<solid_color>(color(0, 1, 1));
+    auto red = std::make_shared<metal_roughness>(std::make_shared<solid_color>(color(0.9, 0.1, 0.1)), 1.0, 0.5, map);
+    auto blue = std::make_shared<metal_roughness>(std::make_shared<solid_color>(color(0.1, 0.1, 0.9)), 1.0, 0.5, map);
+    hittable_list world;
+    world.add(std::make_shared<quad>(point3(-4, -4, 0), vec3(4, 0, 0), vec3(0, 8, 0), red));
+    world.add(std::make_shared<quad>(point3(0, -4, 0), vec3(4, 0, 0), vec3(0, 8, 0), blue));
+    const compiled_scene scene = compile_scene(world, point3(0, 0, 5));
+    REQUIRE(scene.materials.size() == 2);
+    const vec3f first = scene.textures.eval(scene.materials[0].texture, 0, 0, vec3(0, 0, 0));
+    const vec3f second = scene.textures.eval(scene.materials[1].texture, 0, 0, vec3(0, 0, 0));
+    CHECK(first.x + second.x == doctest::Approx(1.0f));
+    CHECK(first.z + second.z == doctest::Approx(1.0f));
+    CHECK(std::fabs(first.x - second.x) == doctest::Approx(0.8f));
+}
+
 TEST_CASE("metallic-roughness map: each half of a square as the material of that half") {
     // Book 2's checker, cell size 1, on the square z = 0.5 that spans x in [-1, 1] and y in
     // [0.1, 0.9]: cells by the parity of floor(x) + floor(y) + floor(z), so x < 0 is an odd cell,

@@ -305,7 +305,7 @@ class scene_compiler {
         // a constant texture of the table).
         const auto* blend = dynamic_cast<const metal_roughness*>(base);
         if (blend && blend->metallic_roughness_map() && !d.is_user()) {
-            if (d.texture == no_texture) d.texture = out_.textures.add(solid_color(blend->base_colour()));
+            if (d.texture == no_texture) d.texture = out_.textures.add_constant(vec3f(blend->base_colour()));
             out_.metallic_roughness_maps.resize(index + 1);
             out_.metallic_roughness_maps[index] = {out_.textures.add(*blend->metallic_roughness_map()),
                                                    float(blend->metallic()), float(blend->roughness())};

@@ -5,6 +5,7 @@
 //
 //   uint32_t i = table.add(tex);               compiles tex (and a checker's children) once per
 //                                              texture pointer; returns its index
+//   uint32_t i = table.add_constant(c);        a colour the compiler needs as a texture
 //   vec3f c = table.eval(i, u, v, p_world);    the colour at surface coordinates (u, v), point p
 //   float a = table.average(i);                the mean colour over the texture, channels averaged:
 //                                              what a textured light's power is computed from
@@ -45,6 +46,8 @@ class texture_table {
     std::vector<entry> entries;
 
     uint32_t add(const texture& tex);
+    // A constant colour the compiler makes itself (no book texture stands for it): a new entry.
+    uint32_t add_constant(const vec3f& c);
     vec3f eval(uint32_t index, float u, float v, const vec3& p_world) const {
         return visit_value<texture_kinds>(entries[index], [&](const auto& k) { return k.eval(*this, u, v, p_world); });
     }
@@ -84,6 +87,13 @@ inline uint32_t texture_table::add(const texture& tex) {
                     return std::decay_t<decltype(k)>::calls_user_code;
                 });
     index_.emplace(&tex, index);
+    return index;
+}
+
+inline uint32_t texture_table::add_constant(const vec3f& c) {
+    const auto index = static_cast<uint32_t>(entries.size());
+    entries.push_back(constant_colour{c});
+    reads_uv_.push_back(false);
     return index;
 }
 
