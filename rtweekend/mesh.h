@@ -10,6 +10,7 @@
 // every triangle in turn: it is there for code that calls world.hit() itself, and is slow for
 // big meshes.
 
+#include "color.h"
 #include "hittable.h"
 #include "triangle.h"
 
@@ -27,6 +28,15 @@ class triangle_mesh : public hittable {
     std::vector<point3> positions;
     std::vector<vec3> normals;                   // may be empty
     std::vector<std::array<double, 2>> uvs;      // texture coordinates (u, v); may be empty
+    // Optional, one per entry of uvs: the direction of increasing u (dp/du) a file gives with its
+    // texture coordinates (glTF's TANGENT). A smooth mesh with a normal map takes its frames from
+    // these instead of working dp/du out from the coordinates; the bitangent still turns with
+    // the coordinates (render: scene/surface_coordinates.h).
+    std::vector<vec3> tangents;
+    // Optional, one per position: colours the renderer multiplies into the surface's colour at
+    // each point, weighted barycentrically (glTF's COLOR_0), leaving emitters as they are. Only
+    // the renderer's compiled scene applies them; hit() below does not.
+    std::vector<color> colors;
     std::vector<std::array<uint32_t, 3>> faces;  // three indices into positions per triangle
     // Per corner, indices into normals and uvs (no_index where the file gave none); either
     // vector is empty when the mesh has no such data at all.

@@ -2,7 +2,8 @@
 // their buffers embedded as base64 or in a GLB container. Each material rule's kind and numbers;
 // node transforms placing known corners where the matrices put them by hand; a mesh placed twice
 // shared as instances; the camera and point lights; what renders (an emitter's radiance, its
-// texture's texels the glTF way up, repeated); a glTF and the same scene as a text scene giving
+// texture's texels the glTF way up, repeated; a normal texture in the frame TANGENT gives; vertex
+// colours times the base colour, baked and in instances); a glTF and the same scene as a text scene giving
 // the same image; one warning per unsupported feature, one error line per malformed file. And
 // image_texture's samplers (repeat, mirror, bilinear, factor) against values worked by hand.
 
@@ -116,6 +117,40 @@ bool hits(const gltf_model& m, const point3& from, const vec3& dir, point3* wher
     if (!m.world.hit(ray(from, dir), interval(1e-6, infinity), rec)) return false;
     if (where) *where = rec.p;
     return true;
+}
+
+// The square's buffer with more float attributes per vertex (each its floats and glTF type), as
+// accessors 3, 4, ... in buffer views 3, 4, ...
+square_buffer with_attributes(const std::vector<std::pair<std::vector<float>, std::string>>& attributes) {
+    square_buffer b;
+    b.views.pop_back();
+    b.accessors.pop_back();
+    int view = 3;
+    for (const auto& [values, type] : attributes) {
+        const size_t offset = b.bin.size();
+        b.bin += bytes_of(values);
+        b.views += R"(,{"buffer":0,"byteOffset":)" + std::to_string(offset) + R"(,"byteLength":)" +
+                   std::to_string(values.size() * 4) + "}";
+        b.accessors += R"(,{"bufferView":)" + std::to_string(view++) + R"(,"componentType":5126,"count":4,"type":")" + type + R"("})";
+    }
+    b.views += "]";
+    b.accessors += "]";
+    return b;
+}
+
+// The shading normal a camera 10 units up +z sees at the centre of the square, under the model.
+vec3 normal_at_centre(const gltf_model& m) {
+    camera cam = test::test_camera(5, 5, 1, 4);
+    cam.lookfrom = point3(0, 0, 10);
+    cam.lookat = point3(0, 0, 0);
+    cam.vfov = 5;
+    const camera_frame frame = cam.frame();
+    hittable_list world;
+    world.add(std::make_shared<hittable_list>(m.world));
+    const compiled_scene scene = compile_scene(world, frame.position, {});
+    render_settings s;
+    s.samples_per_pixel = 1;
+    return render_guides(scene, frame, cam.sky(), s).normal.pixel(2, 2);
 }
 
 } // namespace
@@ -350,21 +385,96 @@ TEST_CASE("glTF models: a normal texture tilts the shading normal the glTF way u
     REQUIRE(mapped);
     CHECK(dynamic_cast<const metal_roughness*>(mapped->base().get()));
     CHECK(m.warnings.empty());
-    camera cam = test::test_camera(5, 5, 1, 4);
-    cam.lookfrom = point3(0, 0, 10);
-    cam.lookat = point3(0, 0, 0);
-    cam.vfov = 5;
-    const camera_frame frame = cam.frame();
-    hittable_list world;
-    world.add(std::make_shared<hittable_list>(m.world));
-    const compiled_scene scene = compile_scene(world, frame.position, {});
-    render_settings s;
-    s.samples_per_pixel = 1;
-    const color n = render_guides(scene, frame, cam.sky(), s).normal.pixel(2, 2);
+    const vec3 n = normal_at_centre(m);
     const double y = 2 * 191 / 255.0 - 1, x = 2 * 128 / 255.0 - 1, z = 2 * 237 / 255.0 - 1, len = std::sqrt(x * x + y * y + z * z);
     CHECK(n.x() == doctest::Approx(x / len).epsilon(1e-4));
     CHECK(n.y() == doctest::Approx(y / len).epsilon(1e-4));
     CHECK(n.z() == doctest::Approx(z / len).epsilon(1e-4));
+}
+
+TEST_CASE("glTF models: TANGENT frames the normal texture, turned with its node") {
+    // One texel tilted towards the tangent: (218, 128, 218) read as data is n = (x, y, z) =
+    // (0.7098, 0.0039, 0.7098) in (T, B, N). Each vertex's TANGENT is (1, 1, 0)/sqrt 2, w = 1,
+    // at 45 degrees to the texture coordinates' dp/du (+x); B = N x T = (-1, 1, 0)/sqrt 2 (on
+    // dp/dv's side, +y, as w = 1 says).
+    const std::string png = encode_8bit_image("t.png", 1, 1, {218, 128, 218});
+    const double x = 2 * 218 / 255.0 - 1, y = 2 * 128 / 255.0 - 1, z = 2 * 218 / 255.0 - 1;
+    const double r = 1 / std::sqrt(2.0);
+    auto expected = [&](const vec3& t, const vec3& b) { return unit_vector(x * t + y * b + z * vec3(0, 0, 1)); };
+    const float h = float(r);
+    const square_buffer b = with_attributes({{{h, h, 0, 1, h, h, 0, 1, h, h, 0, 1, h, h, 0, 1}, "VEC4"},
+                                             {{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3"}});
+    auto model = [&](const std::string& attributes, const std::string& node) {
+        const std::string rest = R"("materials":[{"normalTexture":{"index":0}}],"textures":[{"source":0}],)"
+                                 R"("images":[{"uri":"data:image/png;base64,)" + base64(png) + R"("}],)"
+                                 R"("meshes":[{"primitives":[{"attributes":)" + attributes + R"(,"indices":1,"material":0}]}],)"
+                                 R"("nodes":[)" + node + R"(],"scenes":[{"nodes":[0]}],"scene":0)";
+        gltf_model m = decode_gltf_model(gltf_text(rest, b), "t.gltf");
+        CHECK(m.warnings.empty());
+        return m;
+    };
+    // Normals +z (accessor 4): glTF ignores tangents on a mesh without normals.
+    const std::string with_tangent = R"({"POSITION":0,"TEXCOORD_0":2,"NORMAL":4,"TANGENT":3})";
+    const std::string without = R"({"POSITION":0,"TEXCOORD_0":2,"NORMAL":4})";
+    SUBCASE("as given") {
+        const vec3 n = normal_at_centre(model(with_tangent, R"({"mesh":0})"));
+        const vec3 want = expected(vec3(r, r, 0), vec3(-r, r, 0));
+        for (int a = 0; a < 3; ++a) CHECK(n[a] == doctest::Approx(want[a]).epsilon(1e-4));
+        // Without TANGENT the frame is dp/du = +x, B = +y: a different normal.
+        const vec3 plain = normal_at_centre(model(without, R"({"mesh":0})"));
+        const vec3 want_plain = expected(vec3(1, 0, 0), vec3(0, 1, 0));
+        for (int a = 0; a < 3; ++a) CHECK(plain[a] == doctest::Approx(want_plain[a]).epsilon(1e-4));
+    }
+    SUBCASE("turned 90 degrees about z by its node") {
+        // The rotation takes T to (-1, 1, 0)/sqrt 2 and B to (-1, -1, 0)/sqrt 2.
+        const vec3 n = normal_at_centre(model(with_tangent, R"({"mesh":0,"rotation":[0,0,0.70710678,0.70710678]})"));
+        const vec3 want = expected(vec3(-r, r, 0), vec3(-r, -r, 0));
+        for (int a = 0; a < 3; ++a) CHECK(n[a] == doctest::Approx(want[a]).epsilon(1e-4));
+    }
+}
+
+TEST_CASE("glTF models: COLOR_0 multiplies the base colour, across the square and in instances") {
+    // Vertex colours red at x = -1, blue at x = +1: at x the colour is ((1 - x)/2, 0, (1 + x)/2)
+    // times the base colour (1, 0.5, 1). A smooth metal under a white sky, seen head-on, shows its
+    // base colour (Schlick's Fresnel at normal incidence), so a pixel is the colour at its x.
+    const square_buffer b = with_attributes({{{1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0}, "VEC3"}});
+    auto model = [&](const std::string& nodes, const std::string& roots) {
+        const std::string rest = R"("materials":[{"pbrMetallicRoughness":{"baseColorFactor":[1,0.5,1,1],"roughnessFactor":0}}],)"
+                                 R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":3},"indices":1,"material":0}]}],)"
+                                 R"("nodes":)" + nodes + R"(,"scenes":[{"nodes":)" + roots + R"(}],"scene":0)";
+        test::scratch_dir dir("gltf_colour");
+        scene_description s = load_model_scene(dir.write("c.gltf", gltf_text(rest, b)));
+        CHECK(s.warnings.empty());
+        return s;
+    };
+    auto render_row = [&](scene_description s, double x_centre) {
+        s.cam = test::test_camera(16, 16, 64, 3);
+        s.cam.lookfrom = point3(x_centre, 0, 20);
+        s.cam.lookat = point3(x_centre, 0, 0);
+        s.cam.vfov = 5.6; // half-height 20 tan 2.8 deg = 0.978
+        s.cam.background = color(1, 1, 1);
+        hittable_list world;
+        world.add(std::make_shared<hittable_list>(s.world));
+        return test::render_checked(s.cam, world).img;
+    };
+    const double half = 20 * std::tan(degrees_to_radians(2.8));
+    auto check_row = [&](const image& img, double x_shift) {
+        for (int i : {2, 5, 8, 11, 13}) {
+            const double x = ((i + 0.5) / 16 * 2 - 1) * half - x_shift; // in the square's own frame
+            const color c = img.pixel(i, 8);
+            CHECK(c.x() == doctest::Approx((1 - x) / 2).epsilon(0.01));
+            CHECK(c.y() == doctest::Approx(0).epsilon(1e-4));
+            CHECK(c.z() == doctest::Approx((1 + x) / 2).epsilon(0.01));
+        }
+    };
+    SUBCASE("one placement, baked into the world") {
+        check_row(render_row(model(R"([{"mesh":0}])", "[0]"), 0), 0);
+    }
+    SUBCASE("two placements, each an instance of one mesh") {
+        const scene_description s = model(R"([{"mesh":0,"translation":[5,0,0]},{"mesh":0,"translation":[-5,0,0]}])", "[0,1]");
+        check_row(render_row(s, 5), 0);
+        check_row(render_row(s, -5), 0);
+    }
 }
 
 TEST_CASE("glTF models: a glTF and the same scene as a text scene give the same image") {
@@ -479,6 +589,27 @@ TEST_CASE("glTF models: one warning for what is not rendered as written, one err
         fails(gltf_text(R"("materials":[{}],"meshes":[)" + square_mesh + R"(],"nodes":[{"mesh":0},{"extensions":{"KHR_lights_punctual":{"light":)" +
                         std::string(light) + R"(}}}],"scenes":[{"nodes":[0,1]}],"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point"}]}})"),
               "node 1: KHR_lights_punctual light must be a whole number from 0");
+    }
+    { // Vertex colours: on glass a warning (only a base colour takes them); a negative one, a
+      // count that is not the vertices', two components and unnormalized integers are errors.
+        const std::string coloured = R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":3},"indices":1,"material":0}]}],)"
+                                     R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0)";
+        const square_buffer grey = with_attributes({{{0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}, "VEC3"}});
+        const gltf_model m = decode_gltf_model(
+            gltf_text(R"("materials":[{"extensions":{"KHR_materials_transmission":{"transmissionFactor":1}}}],)" + coloured, grey),
+            "g.gltf");
+        CHECK(contains(m.warnings, "mesh 0 primitive 0: COLOR_0 is not applied to a glass or emitting material"));
+        const square_buffer negative = with_attributes({{{0.5, 0.5, 0.5, 0.5, -0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}, "VEC3"}});
+        fails(gltf_text(R"("materials":[{}],)" + coloured, negative), "mesh 0 primitive 0: COLOR_0 1 must be finite and at least 0");
+        square_buffer three = grey;
+        three.accessors.replace(three.accessors.rfind(R"("count":4)"), 9, R"("count":3)");
+        fails(gltf_text(R"("materials":[{}],)" + coloured, three), "COLOR_0 and POSITION have different counts");
+        square_buffer two = grey;
+        two.accessors.replace(two.accessors.rfind("VEC3"), 4, "VEC2");
+        fails(gltf_text(R"("materials":[{}],)" + coloured, two), "COLOR_0 has 2 components per element, not 3 or 4");
+        square_buffer bytes = grey;
+        bytes.accessors.replace(bytes.accessors.rfind("5126"), 4, "5121");
+        fails(gltf_text(R"("materials":[{}],)" + coloured, bytes), "COLOR_0 of integers must be normalized");
     }
     test::check_one_line_error([] { load_gltf_model("/nonexistent/model.glb"); }, "/nonexistent/model.glb", "cannot open");
 }

@@ -22,7 +22,7 @@
 //                                   over s's own (1 but for the book's Schlick glass;
 //                                   render/caustic_paths.h)
 //   M::takes_texture, m.set_colour(c)   whether a texture colours it, and how (its albedo, or a
-//                                   light's emission)
+//   m.colour()                      light's emission), and that colour untextured
 //
 // Directions are unit vectors pointing away from the surface: wo towards where the light goes
 // (the previous vertex: minus the ray's direction), wi towards where it comes from (the scattered

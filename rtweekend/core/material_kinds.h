@@ -133,6 +133,16 @@ class compiled_material {
 
     // A copy coloured `c` by its texture: a lambertian's albedo, a light's emission.
     compiled_material with_colour(const vec3f& c) const;
+    // Whether a texture colours its kind, and the kind's colour as compiled (white when none does).
+    bool takes_colour() const {
+        return visit([](const auto& k) { return std::decay_t<decltype(k)>::takes_texture; });
+    }
+    vec3f colour() const {
+        return visit([](const auto& k) {
+            if constexpr (std::decay_t<decltype(k)>::takes_texture) return k.colour();
+            else return vec3f(1, 1, 1);
+        });
+    }
     // Sets the diffuse base (and what it adds to the properties).
     void set_diffuse_base(const vec3f& d) {
         diffuse = d;

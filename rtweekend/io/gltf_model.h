@@ -13,7 +13,8 @@
 // its roots, each node's matrix (or translation * rotation * scale) times its parent's. What a
 // node holds becomes (docs/models.md):
 //   a mesh           one triangle_mesh per primitive (triangles, strips and fans; indexed or not),
-//                    with the primitive's NORMAL (smooth shading) and TEXCOORD_0; a mesh placed by
+//                    with the primitive's NORMAL (smooth shading), TEXCOORD_0, TANGENT (a normal
+//                    map's frame) and COLOR_0 (multiplying the base colour); a mesh placed by
 //                    one node is baked into world space, one placed by several nodes is shared, each
 //                    placement a transform of it (an instance)
 //   a camera         the first perspective camera met: gltf_model::view
@@ -31,8 +32,9 @@
 //       metal_roughness(baseColorFactor * baseColorTexture, metallicFactor, roughnessFactor,
 //                       metallicRoughnessTexture)
 // Pictures are read with their sampler: repeated, mirrored or clamped, bilinear unless the sampler
-// asks for the nearest pixel. A normalTexture makes the material normal_mapped (its frame from
-// the texture coordinates, per triangle: TANGENT is not read); a metallicRoughnessTexture is
+// asks for the nearest pixel. A normalTexture makes the material normal_mapped (its frame from the
+// primitive's TANGENTs, or else from the texture coordinates, smooth across a smooth mesh; the
+// bitangent's handedness always from the coordinates); a metallicRoughnessTexture is
 // metal_roughness's map (metallic and roughness per texel). The occlusion texture is not needed
 // by a path tracer, which traces the occlusion it stands for. What is not rendered as written is
 // one warning each (a rough glass's roughness texture, alpha, animation, ...).
@@ -608,7 +610,42 @@ class gltf_reader {
             for (size_t i = 0; i < count; ++i) mesh->uvs[i] = {t[2 * i], 1 - t[2 * i + 1]};
             mesh->face_uvs = mesh->faces;
         }
+        // Tangents (xyz; w, the bitangent's handedness, follows from the texture coordinates here)
+        // frame a normal map; glTF ignores them on a mesh without normals.
+        const auto tangent = p.attributes.find("TANGENT");
+        if (tangent != p.attributes.end() && normal != p.attributes.end() && uv != p.attributes.end()) {
+            const std::vector<double> t = read_accessor(tangent->second, 4, where + " TANGENT");
+            if (t.size() / 4 != count) fail(where + ": TANGENT and POSITION have different counts");
+            mesh->tangents.resize(count);
+            for (size_t i = 0; i < count; ++i) {
+                const vec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
+                mesh->tangents[i] = std::isfinite(v.x() + v.y() + v.z()) ? v : vec3(0, 0, 0);
+            }
+        }
+        // Vertex colours multiply the base colour (an RGBA colour's alpha is alpha, not rendered).
+        const auto colour = p.attributes.find("COLOR_0");
+        if (colour != p.attributes.end()) {
+            const tinygltf::Accessor& a = at(m_.accessors, colour->second, "accessor", where + " COLOR_0");
+            const int n = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+            if (n != 3 && n != 4) fail(where + ": COLOR_0 has " + std::to_string(n) + " components per element, not 3 or 4");
+            if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized)
+                fail(where + ": COLOR_0 of integers must be normalized");
+            const std::vector<double> c = read_accessor(colour->second, n, where + " COLOR_0");
+            if (c.size() / size_t(n) != count) fail(where + ": COLOR_0 and POSITION have different counts");
+            mesh->colors.resize(count);
+            for (size_t i = 0; i < count; ++i) {
+                const color v(c[size_t(n) * i], c[size_t(n) * i + 1], c[size_t(n) * i + 2]);
+                if (!(std::isfinite(v.x() + v.y() + v.z()) && v.x() >= 0 && v.y() >= 0 && v.z() >= 0))
+                    fail(where + ": COLOR_0 " + std::to_string(i) + " must be finite and at least 0");
+                mesh->colors[i] = v;
+            }
+        }
         mesh->mat = material_at(p.material);
+        const auto* mapped = dynamic_cast<const normal_mapped*>(mesh->mat.get());
+        if (!mesh->colors.empty() && !dynamic_cast<const metal_roughness*>(mapped ? mapped->base().get() : mesh->mat.get())) {
+            warn(where + ": COLOR_0 is not applied to a glass or emitting material");
+            mesh->colors.clear();
+        }
         return mesh;
     }
 
@@ -646,6 +683,7 @@ class gltf_reader {
                     for (point3& p : prim->positions) p = pl.world.apply(p);
                     for (vec3& n : prim->normals)
                         if (n.length_squared() > 0) n = unit_vector(normal_matrix * n);
+                    for (vec3& t : prim->tangents) t = pl.world.linear * t;
                     // A mirroring matrix turns the triangles inside out; glTF keeps their fronts.
                     if (mirrored)
                         for (auto* faces : {&prim->faces, &prim->face_normals, &prim->face_uvs})

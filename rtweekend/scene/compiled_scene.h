@@ -133,6 +133,12 @@ class compiled_scene {
     // dp/du and dp/dv at a triangle's hit (in the scene's frame, an instance's carried out of its
     // object's), for normal maps; false for other shapes and for triangles without coordinates.
     bool surface_tangents(const surface_hit& hit, vec3& dpdu, vec3& dpdv) const;
+    // The vertex colour at a triangle's hit (triangle_mesh::colors), an instance's looked up in
+    // its object; false for other shapes and for triangles of meshes without colours.
+    bool vertex_colour(const surface_hit& hit, vec3f& c) const;
+    // Some mesh, here or in an object, has vertex colours (their materials are textured, so that
+    // textured() multiplies them in).
+    bool vertex_colours = false;
 
     // Bytes held for tracing: the sets and the BVH nodes.
     size_t geometry_bytes() const;
@@ -294,6 +300,16 @@ RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::surface_tangents(const surface_hi
     dpdu = to_world.vector(vec3f(dpdu)).to_double();
     dpdv = to_world.vector(vec3f(dpdv)).to_double();
     return true;
+}
+
+RTWEEKEND_ENGINE_FUNCTION bool compiled_scene::vertex_colour(const surface_hit& hit, vec3f& c) const {
+    if (hit.user_shape) return false;
+    if (hit.kind == shape_id<triangle_set>) return set<triangle_set>().vertex_colour(hit.index, hit.p.to_double(), c);
+    if (hit.kind != shape_id<instance_set> || hit.object_kind != shape_id<triangle_set>) return false;
+    const instance_set& instances = set<instance_set>();
+    const compiled_scene& object = *objects[instances.object[hit.index]];
+    const vec3f local = instances.to_object[hit.index].point(hit.p - instances.shift(hit.index, hit.time));
+    return object.set<triangle_set>().vertex_colour(hit.object_index, local.to_double(), c);
 }
 
 // The user's hittables without a box, in double precision and world coordinates, after the BVH

@@ -321,6 +321,20 @@ class scene_compiler {
         return index;
     }
 
+    // The table index of material m for a mesh with vertex colours (triangle_mesh::colors), which
+    // textured() multiplies into the colour its kind takes: a kind with a colour of its own is
+    // given it as a constant texture, so that textured() is asked at every hit. Emitters keep
+    // their emission.
+    uint32_t vertex_coloured_material_index(const material* m) {
+        if (root_ != this) return root_->vertex_coloured_material_index(m);
+        const uint32_t index = material_index(m);
+        compiled_material& d = out_.materials[index];
+        if (d.texture == no_texture && d.takes_colour() && !d.emits() && !d.is_user())
+            d.texture = out_.textures.add_constant(d.colour());
+        out_.vertex_colours = true;
+        return index;
+    }
+
     // The material of a sphere with a negative radius (the books' v3 hollow glass), whose
     // outward normal (p - c) / r points inwards: a ray from outside meets its back face. Only
     // the materials that tell the faces apart change: a dielectric of index n seen inside out

@@ -5,7 +5,8 @@
 //                                            define them (below)
 //   textured(scene, m, hit)                  a copy of material m with its texture looked up at
 //                                            the hit: a lambertian's albedo, a light's emission,
-//                                            a metal_roughness's metallic and roughness map
+//                                            a metal_roughness's metallic and roughness map; a
+//                                            mesh's vertex colours multiply the colour
 //   textured_light_radiance(scene, lc)       the radiance of a textured light at the point a light
 //                                            sample chose (light_set.h)
 //   shading_normal_at(scene, hit)            the hit's shading normal with its material's normal
@@ -49,7 +50,11 @@ inline vec3f texture_at(const compiled_scene& scene, uint32_t texture, const sur
 } // namespace detail
 
 inline compiled_material textured(const compiled_scene& scene, const compiled_material& m, const surface_hit& hit) {
-    compiled_material out = m.with_colour(detail::texture_at(scene, m.texture, hit));
+    vec3f colour = detail::texture_at(scene, m.texture, hit);
+    // A mesh's vertex colours multiply the colour (glTF's COLOR_0 the base colour); not a light's.
+    vec3f vertex;
+    if (scene.vertex_colours && !m.emits() && scene.vertex_colour(hit, vertex)) colour = colour * vertex;
+    compiled_material out = m.with_colour(colour);
     // A metallic-roughness map (compiled_scene::metallic_roughness_maps): blue the metallic, green
     // the roughness, times the material's factors.
     if (hit.material < scene.metallic_roughness_maps.size() && !hit.user_shape) {
@@ -101,8 +106,8 @@ inline vec3f bumped_normal(const compiled_scene& scene, const surface_hit& hit, 
 } // namespace detail
 
 // The normal map's texel c, n = (scale (2 c.x - 1), scale (2 c.y - 1), 2 c.z - 1), in the frame of
-// the outward shading normal N, T = dp/du made perpendicular to N, and B = dp/dv made
-// perpendicular to both (so a mirrored mapping turns B round with it); the result faces the ray
+// the outward shading normal N, T = dp/du made perpendicular to N, and B = N x T or its opposite,
+// whichever is on dp/dv's side (so a mirrored mapping turns B round with it); the result faces the ray
 // as the hit's normals do. Left as it is where the hit has no frame: another shape, no texture
 // coordinates, a degenerate triangle, or a texel that gives no direction.
 inline vec3f shading_normal_at(const compiled_scene& scene, const surface_hit& hit) {
@@ -119,10 +124,9 @@ inline vec3f shading_normal_at(const compiled_scene& scene, const surface_hit& h
     const double lt = t.length();
     if (!(lt > 0)) return hit.shading_normal;
     t /= lt;
-    vec3 b = dpdv - dot(n, dpdv) * n - dot(t, dpdv) * t;
-    const double lb = b.length();
-    if (!(lb > 0)) return hit.shading_normal;
-    b /= lb;
+    // B perpendicular to both, on dp/dv's side: a mirrored mapping turns it round, and a file's
+    // tangent (triangle_mesh::tangents) at any angle to dp/dv still gives a frame.
+    const vec3 b = dot(cross(n, t), dpdv) < 0 ? -cross(n, t) : cross(n, t);
     const vec3 m = x * t + y * b + z * n;
     const double lm = m.length();
     if (!(lm > 0) || !std::isfinite(lm)) return hit.shading_normal;

@@ -37,6 +37,7 @@ struct emitter_bsdf {
     // A texture gives the radiance at each point (book 2).
     static constexpr bool takes_texture = true;
     void set_colour(const vec3f& c) { radiance = c; }
+    vec3f colour() const { return radiance; }
 };
 
 } // namespace rt

@@ -43,6 +43,7 @@ struct isotropic_phase {
     // A texture gives the albedo at each point (book 2; the book's scatter() looks it up).
     static constexpr bool takes_texture = true;
     void set_colour(const vec3f& c) { albedo = c; }
+    vec3f colour() const { return albedo; }
 };
 
 } // namespace rt

@@ -48,6 +48,7 @@ struct lambertian_bsdf {
     // A texture gives the albedo at each hit (book 2).
     static constexpr bool takes_texture = true;
     void set_colour(const vec3f& c) { albedo = c; }
+    vec3f colour() const { return albedo; }
 };
 
 } // namespace rt

@@ -62,6 +62,7 @@ struct metal_rough_bsdf {
     float reversal_ratio(const vec3f&, const vec3f&, bool, const material_sample&) const { return 1; }
     static constexpr bool takes_texture = true;
     void set_colour(const vec3f& c) { base_colour = c; }
+    vec3f colour() const { return base_colour; }
     // Metallic and roughness, each clamped to [0, 1] (a texel times a factor may pass 1). The blend
     // has no mirror limit of its own (its coat and metal are microfacet lobes throughout): alpha
     // stops at smooth_alpha, a mirror to within a thousandth of a radian.

@@ -65,6 +65,8 @@ struct triangle_set {
         bool has_uv = false;
         std::array<vec3f, 3> dpdu{}; // smooth dp/du at the vertices (normal- or bump-mapped smooth meshes)
         bool has_dpdu = false;
+        std::array<vec3f, 3> colour{vec3f(1, 1, 1), vec3f(1, 1, 1), vec3f(1, 1, 1)}; // vertex colours, else white
+        bool has_colour = false;
     };
     // The book's triangle, and a triangle_mesh (mesh.h) face by face, under the map xf. A single
     // triangle of zero area is an error; a mesh's are left out and counted (degenerate).
@@ -106,6 +108,9 @@ struct triangle_set {
     // its faces' dp/du, so that a map's frame turns smoothly across a curved mesh's triangles
     // instead of in steps (surface_tangents). Zero for the triangles that have none.
     std::array<std::vector<float>, 9> dpdu_at;
+    // Vertex colours (triangle_mesh::colors), laid out like `vertex`, when some mesh has them;
+    // else empty. White for the triangles that have none.
+    std::array<std::vector<float>, 9> colour;
     // Back-face culling: 1 where a hit on the back face is skipped; empty until
     // mark_culled.
     std::vector<float> cull;
@@ -126,6 +131,10 @@ struct triangle_set {
     void append_dpdu(const std::array<vec3f, 3>& d) {
         for (int k = 0; k < 3; ++k)
             for (int axis = 0; axis < 3; ++axis) dpdu_at[size_t(3 * k + axis)].push_back(d[size_t(k)][axis]);
+    }
+    void append_colour(const std::array<vec3f, 3>& c) {
+        for (int k = 0; k < 3; ++k)
+            for (int axis = 0; axis < 3; ++axis) colour[size_t(3 * k + axis)].push_back(c[size_t(k)][axis]);
     }
 
     size_t size() const { return count; }
@@ -151,6 +160,9 @@ struct triangle_set {
     // vertices' smooth ones where the triangle has them (dpdu_at). False when the triangles have
     // no coordinates, or triangle i's are degenerate (all on a line).
     bool surface_tangents(uint32_t i, double u, double v, vec3& dpdu, vec3& dpdv) const;
+    // The vertex colours of triangle i at point p (relative to the set's origin), weighted by its
+    // barycentric coordinates; false when no triangle has colours.
+    bool vertex_colour(uint32_t i, const vec3& p, vec3f& c) const;
 
     // An emitting triangle is light-sampled by area.
     static constexpr bool light_sampled = true;
@@ -172,10 +184,14 @@ struct triangle_set {
         for (const auto& v : normal) b += v.size() * sizeof(float);
         for (const auto& v : uv) b += v.size() * sizeof(float);
         for (const auto& v : dpdu_at) b += v.size() * sizeof(float);
+        for (const auto& v : colour) b += v.size() * sizeof(float);
         return b;
     }
 
   private:
+    // The barycentric weights of point p (scene-origin relative) on triangle i; false when it is
+    // degenerate.
+    bool barycentric(uint32_t i, const vec3& p, double b[3]) const;
     vec3f vertex_f(int v, uint32_t i) const {
         return {vertex[size_t(3 * v)][i], vertex[size_t(3 * v + 1)][i], vertex[size_t(3 * v + 2)][i]};
     }
@@ -210,7 +226,9 @@ bool add_triangle(Compiler& compiler, const point3& a, const point3& b, const po
 
 // The smooth dp/du of each texture-coordinate vertex of a smooth mesh with a normal or bump map
 // (normal_mapped), under the map xf: the area-weighted mean of the dp/du of the faces that use it
-// (triangle_set::dpdu_at). Empty for any other mesh, which keeps each triangle's own.
+// (triangle_set::dpdu_at). Where the mesh gives its own tangents (triangle_mesh::tangents), a
+// vertex takes its tangent's direction under xf at that mean's length (a bump map's slopes scale
+// with it). Empty for any other mesh, which keeps each triangle's own.
 inline std::vector<vec3> vertex_dpdu(const triangle_mesh& mesh, const affine_map& xf) {
     if (!mesh.smooth_shading || mesh.face_uvs.empty() || mesh.uvs.empty() || !dynamic_cast<const normal_mapped*>(mesh.mat.get()))
         return {};
@@ -236,8 +254,14 @@ inline std::vector<vec3> vertex_dpdu(const triangle_mesh& mesh, const affine_map
             weight[k] += area;
         }
     }
+    const bool given = mesh.tangents.size() == mesh.uvs.size();
     for (size_t k = 0; k < sum.size(); ++k) {
         sum[k] = weight[k] > 0 ? sum[k] / weight[k] : vec3(0, 0, 0);
+        if (given) {
+            const vec3 t = xf.vector(mesh.tangents[k]);
+            const double lt = t.length(), ls = sum[k].length();
+            if (lt > 0 && std::isfinite(lt)) sum[k] = t * ((ls > 0 ? ls : 1) / lt);
+        }
         if (!finite3(sum[k]) || !is_finite(vec3f(sum[k]))) sum[k] = vec3(0, 0, 0);
     }
     return sum;
@@ -257,7 +281,11 @@ void triangle_set::add(Compiler& compiler, const triangle& t, const affine_map& 
 template <class Compiler>
 void triangle_set::add(Compiler& compiler, const triangle_mesh& mesh, const affine_map& xf) {
     if (!mesh.mat) throw scene_error("triangle mesh has no material");
-    const uint32_t m = compiler.material_index(mesh.mat.get());
+    if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size())
+        throw scene_error("triangle mesh has " + std::to_string(mesh.colors.size()) + " vertex colours for " +
+                          std::to_string(mesh.positions.size()) + " vertices");
+    const uint32_t m = mesh.colors.empty() ? compiler.material_index(mesh.mat.get())
+                                           : compiler.vertex_coloured_material_index(mesh.mat.get());
     std::vector<input>& inputs = compiler.template inputs<triangle_set>();
     const std::vector<vec3> smooth_dpdu = detail::vertex_dpdu(mesh, xf);
     for (size_t i = 0; i < mesh.faces.size(); ++i) {
@@ -306,6 +334,17 @@ void triangle_set::add(Compiler& compiler, const triangle_mesh& mesh, const affi
             }
             t.has_dpdu = true;
         }
+        if (!mesh.colors.empty()) {
+            // A coloured mesh's triangle takes its corners' colours.
+            for (size_t k = 0; k < 3; ++k) {
+                const uint32_t index = f[k];
+                const color& c = mesh.colors[index];
+                if (!(finite3(c) && c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && is_finite(vec3f(c))))
+                    throw scene_error("triangle mesh vertex colour " + std::to_string(index) + " must be finite and at least 0, got " + point_text(c));
+                t.colour[k] = vec3f(c);
+            }
+            t.has_colour = true;
+        }
     }
 }
 
@@ -313,13 +352,15 @@ template <class Scene>
 void triangle_set::lay_out(const Scene&, const std::vector<input>& inputs, const std::vector<uint32_t>& order) {
     count = order.size();
     distinct = inputs.size();
-    bool any_smooth = false, any_uv = false, any_dpdu = false;
+    bool any_smooth = false, any_uv = false, any_dpdu = false, any_colour = false;
     for (const input& t : inputs)
-        any_smooth = any_smooth || t.smooth, any_uv = any_uv || t.has_uv, any_dpdu = any_dpdu || t.has_dpdu;
+        any_smooth = any_smooth || t.smooth, any_uv = any_uv || t.has_uv, any_dpdu = any_dpdu || t.has_dpdu,
+        any_colour = any_colour || t.has_colour;
     auto push = [&](const input& t) {
         append(t.v, t.material);
         if (any_uv) append_uv(t.uv);
         if (any_dpdu) append_dpdu(t.dpdu);
+        if (any_colour) append_colour(t.colour);
         if (!any_smooth) return;
         std::array<vec3f, 3> n = t.n;
         if (!t.smooth) {
@@ -449,20 +490,38 @@ inline bool triangle_set::surface_tangents(uint32_t i, double u, double v, vec3&
     return std::isfinite(dpdu.x() + dpdu.y() + dpdu.z() + dpdv.x() + dpdv.y() + dpdv.z());
 }
 
-inline void triangle_set::surface_coordinates(const surface_hit& hit, double& u, double& v) const {
-    u = v = 0;
-    const uint32_t i = hit.index;
-    const vec3 p = hit.p.to_double();
-    if (uv[0].empty()) return;
-    // Barycentric coordinates by least squares in the triangle's plane (Ericson, Real-Time
-    // Collision Detection, 3.4): p is on the plane, up to rounding.
+inline bool triangle_set::barycentric(uint32_t i, const vec3& p, double b[3]) const {
+    // By least squares in the triangle's plane (Ericson, Real-Time Collision Detection, 3.4): p is
+    // on the plane, up to rounding.
     const vec3 a = corner(0, i), e1 = corner(1, i) - a, e2 = corner(2, i) - a, d = p - a;
     const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(d, e1), d21 = dot(d, e2);
     const double det = d00 * d11 - d01 * d01;
-    if (!(det > 0)) return;
-    const double b1 = (d11 * d20 - d01 * d21) / det, b2 = (d00 * d21 - d01 * d20) / det, b0 = 1 - b1 - b2;
-    u = b0 * uv[0][i] + b1 * uv[2][i] + b2 * uv[4][i];
-    v = b0 * uv[1][i] + b1 * uv[3][i] + b2 * uv[5][i];
+    if (!(det > 0)) return false;
+    b[1] = (d11 * d20 - d01 * d21) / det;
+    b[2] = (d00 * d21 - d01 * d20) / det;
+    b[0] = 1 - b[1] - b[2];
+    return true;
+}
+
+inline void triangle_set::surface_coordinates(const surface_hit& hit, double& u, double& v) const {
+    u = v = 0;
+    const uint32_t i = hit.index;
+    double b[3];
+    if (uv[0].empty() || !barycentric(i, hit.p.to_double(), b)) return;
+    u = b[0] * uv[0][i] + b[1] * uv[2][i] + b[2] * uv[4][i];
+    v = b[0] * uv[1][i] + b[1] * uv[3][i] + b[2] * uv[5][i];
+}
+
+inline bool triangle_set::vertex_colour(uint32_t i, const vec3& p, vec3f& c) const {
+    if (colour[0].empty()) return false;
+    double b[3];
+    if (!barycentric(i, p, b)) b[0] = b[1] = b[2] = 1.0 / 3;
+    vec3 sum(0, 0, 0);
+    for (int k = 0; k < 3; ++k)
+        sum += std::max(b[k], 0.0) * vec3(colour[size_t(3 * k)][i], colour[size_t(3 * k + 1)][i], colour[size_t(3 * k + 2)][i]);
+    const double total = std::max(b[0], 0.0) + std::max(b[1], 0.0) + std::max(b[2], 0.0);
+    c = vec3f(total > 0 ? sum / total : sum);
+    return true;
 }
 
 } // namespace rt
