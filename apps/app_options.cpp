@@ -166,9 +166,9 @@ void print_usage(const description& d, std::FILE* to) {
                      "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
                      "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
                      "  --integrator path\n"
-                     "               render with the path tracer instead (point, directional, spot and area\n"
-                     "               lights with indirect light, the diffuse reflectance as a Lambertian\n"
-                     "               albedo); --spp, --depth, --seed,\n"
+                     "               render with the path tracer instead (point, directional, spot, area and\n"
+                     "               object lights with indirect light, the diffuse reflectance as a\n"
+                     "               Lambertian albedo); --spp, --depth, --seed,\n"
                      "               --adaptive, --estimator, --sampler, --caustic-paths and --filter then apply too\n");
 }
 

@@ -178,11 +178,53 @@ inline std::vector<rt::directional_light> xml_path_directional_lights(const rt::
     return lights;
 }
 
+// The course scene's world for the path tracer: its light meshes and light spheres (homework 6)
+// as emitters of the path tracer's own, two-sided diffuse_lights of radiance L times pi (the
+// course's units, as its other lights), in place of the course materials that carry L (which the
+// path tracer does not see). A light mesh becomes its world-space triangles, light-sampled by
+// area; a light sphere its sphere under its map.
+inline rt::hittable_list xml_path_world(const rt::whitted_scene& scene) {
+    if (scene.light_meshes.empty() && scene.light_spheres.empty()) return scene.world;
+    std::vector<const rt::hittable*> replaced;
+    rt::hittable_list world;
+    for (const rt::light_mesh& l : scene.light_meshes) {
+        replaced.push_back(l.shape.get());
+        auto mesh = std::make_shared<rt::triangle_mesh>();
+        for (const auto& t : l.triangles) {
+            const auto first = uint32_t(mesh->positions.size());
+            mesh->positions.insert(mesh->positions.end(), t.begin(), t.end());
+            mesh->faces.push_back({first, first + 1, first + 2});
+        }
+        mesh->mat = std::make_shared<rt::diffuse_light>(l.radiance * rt::pi, true);
+        world.add(mesh);
+    }
+    for (const rt::light_sphere& l : scene.light_spheres) {
+        replaced.push_back(l.shape.get());
+        auto light = std::make_shared<rt::diffuse_light>(l.radiance * rt::pi, true);
+        // A map that keeps it a sphere (a rotation, a uniform scale) places a sphere in the world,
+        // which is light-sampled; an ellipsoid stays under its map, found by the rays that hit it.
+        const rt::mat3 gram = l.linear.transpose() * l.linear;
+        const double scale2 = gram(0, 0);
+        bool similar = scale2 > 0 && std::isfinite(scale2);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) similar = similar && std::fabs(gram(i, j) - (i == j ? scale2 : 0)) <= 1e-12 * scale2;
+        if (similar) {
+            world.add(std::make_shared<rt::sphere>(l.linear * l.center + l.offset, std::sqrt(scale2) * l.radius, light));
+        } else {
+            world.add(std::make_shared<rt::transform>(std::make_shared<rt::sphere>(l.center, l.radius, light), l.linear, l.offset));
+        }
+    }
+    for (const auto& object : scene.world.objects)
+        if (std::find(replaced.begin(), replaced.end(), object.get()) == replaced.end()) world.add(object);
+    return world;
+}
+
 // A course scene compiled for the path tracer around its first camera, with its point,
-// directional and spot lights (above) and its area lights: squares no ray hits, radiance times pi
-// as for the others, their sides along the course's frame about the normal (course_lights.h).
+// directional and spot lights (above), its light objects (xml_path_world) and its area lights:
+// squares no ray hits, radiance times pi as for the others, their sides along the course's frame
+// about the normal (course_lights.h).
 inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
-    rt::compiled_scene compiled = rt::compile_scene(scene.world, scene.cameras[0].position, xml_path_lights(scene),
+    rt::compiled_scene compiled = rt::compile_scene(xml_path_world(scene), scene.cameras[0].position, xml_path_lights(scene),
                                                     xml_path_directional_lights(scene));
     for (const rt::area_light& l : scene.area_lights) {
         const double len = l.normal.length();
@@ -268,12 +310,12 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 // A course scene through the path tracer (xml_path_settings says how), camera by camera.
 inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
                                    const std::vector<std::string>& outputs) {
-    // What the path tracer does not take from a course scene yet: object and environment lights
-    // and the texture maps of homework 4 are refused (an image without them would be wrong); the
+    // What the path tracer does not take from a course scene yet: environment lights and the
+    // texture maps of homework 4 are refused (an image without them would be wrong); the
     // cameras' distribution settings are named in a warning (--spp replaces NumSamples; no lens).
-    // Point, directional, spot and area lights carry over (xml_path_compiled).
-    if (!scene.light_meshes.empty() || !scene.light_spheres.empty() || !scene.environment_lights.empty())
-        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's object or environment "
+    // Point, directional, spot, area and object lights carry over (xml_path_compiled).
+    if (!scene.environment_lights.empty())
+        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's environment "
                               "lights yet: render this scene in Whitted mode (without --integrator)");
     if (!scene.textured_objects.empty() || scene.background_texture)
         throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's texture maps yet: "

@@ -93,12 +93,15 @@ whitted_scene lit_floor(test::scratch_dir& dir, const std::string& at, const std
 }
 
 // The scene's first camera through our path tracer, with its lights as `render --integrator path`
-// converts them (xml_path_compiled): the direct light alone, its mean over the pixels.
-pixel_mean ours_direct_mean(const whitted_scene& scene, int samples) {
+// converts them (xml_path_compiled): the direct light alone, its mean over the pixels. Lights no
+// ray hits are found by next-event estimation from the first hit (max_depth 1); an emitter the
+// rays can hit is found by it and by the first hit's scattered ray, whose weights sum to one
+// (multiple importance sampling), so that ray must be traced too (max_depth 2).
+pixel_mean ours_direct_mean(const whitted_scene& scene, int samples, int max_depth = 1) {
     const compiled_scene compiled = app::xml_path_compiled(scene);
     render_settings settings;
     settings.samples_per_pixel = samples;
-    settings.max_depth = 1;
+    settings.max_depth = max_depth;
     settings.quiet = true;
     return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img);
 }
@@ -371,6 +374,60 @@ TEST_CASE("course path tracer: an area light over a floor, kd L pi F in both, an
     const double seen = ours_direct(across);
     CHECK(seen > 1);
     CHECK(seen < 20);
+}
+
+TEST_CASE("course path tracer: light meshes and spheres in ours, as bright as in the course's, and seen") {
+    // The floor (kd 0.5) under a <LightMesh> square of size 2 and radiance 100 at height 1: the
+    // area light's kd L pi F (above), in the Whitted integrator and in ours (a two-sided
+    // diffuse_light of L times pi, light-sampled). Under a <LightSphere> of radius 0.25 whose
+    // centre is 1 above the seen point: irradiance pi L' (r / h)^2 (the whole sphere above the
+    // horizon), so kd pi L (r / h)^2 in both units.
+    auto scene_with = [](test::scratch_dir& dir, const std::string& at, const std::string& gaze, const std::string& light,
+                         const std::string& transformations = "") {
+        return load_xml_scene(dir.write(
+            "s.xml", "<Scene>" + transformations + "<MaxRecursionDepth>0</MaxRecursionDepth>" + camera(at, gaze, 4, "") +
+                         "<Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance></Material>"
+                         "<Material id=\"2\"><DiffuseReflectance>0 0 0</DiffuseReflectance></Material></Materials>"
+                         "<VertexData>-20 0 -20 20 0 -20 20 0 20 -20 0 20  -1 1 -1 1 1 -1 1 1 1 -1 1 1  0 1 0</VertexData><Objects>"
+                         "<Mesh id=\"1\"><Material>1</Material><Faces>1 3 2 1 4 3</Faces></Mesh>" + light + "</Objects></Scene>"));
+    };
+    const std::string square = "<LightMesh id=\"1\"><Material>2</Material><Faces>5 6 7 5 7 8</Faces><Radiance>100 100 100</Radiance></LightMesh>";
+    const std::string ball = "<LightSphere id=\"1\"><Material>2</Material><Center>9</Center><Radius>0.25</Radius><Radiance>100 100 100</Radiance></LightSphere>";
+    const std::string ball_scaled = "<LightSphere id=\"1\"><Material>2</Material><Center>9</Center><Radius>0.125</Radius>"
+                                    "<Transformations>s1</Transformations><Radiance>100 100 100</Radiance></LightSphere>";
+    struct lit {
+        std::string light, transformations;
+        double expected;
+    };
+    const double r = 0.25;
+    for (const lit& c : {lit{square, "", 0.5 * 100 * pi_d * 4 * corner_view_factor(1, 1, 1)},
+                         lit{ball, "", 0.5 * pi_d * 100 * r * r},
+                         // Radius 0.125 scaled by 2 about the origin: the centre moves to height 2,
+                         // the sphere is radius 0.25 there.
+                         lit{ball_scaled, "<Transformations><Scaling id=\"1\">2 2 2</Scaling></Transformations>",
+                             0.5 * pi_d * 100 * r * r / 4}}) {
+        CAPTURE(c.light);
+        test::scratch_dir dir("course_path_objects");
+        const whitted_scene scene = scene_with(dir, "0 0.5 0.5", "0 -0.5 -0.5", c.light, c.transformations);
+        INFO((scene.warnings.empty() ? std::string() : scene.warnings[0]));
+        REQUIRE(scene.warnings.empty());
+        REQUIRE(scene.light_meshes.size() + scene.light_spheres.size() == 1);
+        const pixel_mean ours = ours_direct_mean(scene, 1024, 2);
+        INFO(ours.mean << " +- " << ours.error << ", expected " << c.expected);
+        CHECK(std::fabs(ours.mean - c.expected) <= 5 * ours.error + 2e-3 * c.expected);
+        CHECK(ours.error < 0.02 * c.expected);
+        const pixel_mean course = mean_of(render_whitted(scene, 0).img);
+        CHECK(std::fabs(course.mean - c.expected) <= 5 * course.error + 0.02 * c.expected);
+    }
+    // Seen from below and from above, the square shows L times pi in ours (two-sided), L in the
+    // course's (its units: docs/course.md).
+    for (const auto& [from, gaze] : {std::pair<const char*, const char*>{"0 0.5 0", "0 1 0"}, {"0 1.5 0", "0 -1 0"}}) {
+        CAPTURE(from);
+        test::scratch_dir dir("course_path_objects_seen");
+        const whitted_scene scene = scene_with(dir, from, gaze, square);
+        CHECK(ours_direct_mean(scene, 4, 2).mean == doctest::Approx(100 * pi_d).epsilon(1e-5));
+        CHECK(mean_of(render_whitted(scene, 0).img).mean == doctest::Approx(100).epsilon(1e-5));
+    }
 }
 
 } // namespace test_course_path

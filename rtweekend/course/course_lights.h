@@ -33,6 +33,7 @@
 
 #include "../color.h"
 #include "../directional_light.h"
+#include "../hittable.h"
 #include "../core/vec3f.h"
 #include "../image/image.h"
 #include "../transform.h"
@@ -87,6 +88,9 @@ struct area_light {
 struct light_mesh {
     std::vector<std::array<point3, 3>> triangles; // world space
     color radiance;
+    // The shape the scene's world holds for it (with a course material that emits L), so that a
+    // renderer with lights of its own can put another in its place (render --integrator path).
+    std::shared_ptr<hittable> shape;
 };
 
 struct light_sphere {
@@ -95,6 +99,7 @@ struct light_sphere {
     mat3 linear;   // then x -> linear x + offset
     vec3 offset{0, 0, 0};
     color radiance;
+    std::shared_ptr<hittable> shape; // as light_mesh's
 };
 
 // A lat-long map of the radiance arriving from each direction d (unit, world space): the texel at

@@ -1349,8 +1349,9 @@ class xml_scene_reader {
             for (const auto& f : mesh->faces)
                 light.triangles.push_back({m.point(mesh->positions[f[0]]), m.point(mesh->positions[f[1]]),
                                            m.point(mesh->positions[f[2]])});
+            light.shape = place(mesh, m);
+            scene.world.add(light.shape);
             scene.light_meshes.push_back(std::move(light));
-            scene.world.add(place(mesh, m));
             return;
         }
         auto mat = emitting(material_of(o, owner));
@@ -1364,8 +1365,9 @@ class xml_scene_reader {
         light.linear = m.m;
         light.offset = m.t;
         light.radiance = radiance;
+        light.shape = place(std::make_shared<sphere>(c, radius, mat), m);
+        scene.world.add(light.shape);
         scene.light_spheres.push_back(light);
-        scene.world.add(place(std::make_shared<sphere>(c, radius, mat), m));
     }
 
     // A mesh's raw geometry (with the material its <Mesh> gives), where it is placed and the
