@@ -4,6 +4,7 @@
 #include "app_options.h"
 
 #include <rtweekend/image/image_write.h>
+#include <rtweekend/io/sky_map_file.h>
 
 #include <algorithm>
 #include <cctype>
@@ -113,7 +114,8 @@ void print_usage(const description& d, std::FILE* to) {
     std::fprintf(to,
                  "usage: %s%s%s [--width N] [--spp N] [--depth N] [--threads N] [--seed N] [--adaptive E]\n"
                  "          [--estimator nee|bsdf|mixture] [--sampler sobol|stratified|independent] [--caustic-paths X]\n"
-                 "          [--filter F] [--look-from X,Y,Z] [--look-at X,Y,Z] [--fov DEG] [-o FILE] [--quiet]\n"
+                 "          [--filter F] [--look-from X,Y,Z] [--look-at X,Y,Z] [--fov DEG] [--sky-map FILE]\n"
+                 "          [-o FILE] [--quiet]\n"
                  "%s\n"
                  "  --width N    image width in pixels (height follows the aspect ratio)\n"
                  "  --spp N      samples per pixel\n"
@@ -138,6 +140,8 @@ void print_usage(const description& d, std::FILE* to) {
                  "  --look-from X,Y,Z, --look-at X,Y,Z, --fov DEG  the camera's position, the point it looks at,\n"
                  "               and its vertical field of view in degrees, over the scene's (a model's default\n"
                  "               view: docs/models.md)\n"
+                 "  --sky-map FILE a lat-long picture of the sky (EXR, HDR, PFM; PNG or JPEG sRGB-decoded),\n"
+                 "               lighting the scene and light-sampled, in place of its sky or background\n"
                  "  -o FILE      write FILE (.ppm, .png, .bmp, or linear .pfm or .exr); default: P3 PPM on stdout\n"
                  "  --quiet      no progress or statistics on stderr\n"
                  "  --help       show this help\n",
@@ -166,9 +170,9 @@ void print_usage(const description& d, std::FILE* to) {
                      "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
                      "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
                      "  --integrator path\n"
-                     "               render with the path tracer instead (point, directional, spot, area and\n"
-                     "               object lights with indirect light, the diffuse reflectance as a\n"
-                     "               Lambertian albedo); --spp, --depth, --seed,\n"
+                     "               render with the path tracer instead (point, directional, spot, area,\n"
+                     "               object and environment lights with indirect light, the diffuse\n"
+                     "               reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
                      "               --adaptive, --estimator, --sampler, --caustic-paths and --filter then apply too\n");
 }
 
@@ -260,6 +264,8 @@ options parse_arguments(int argc, char** argv, const description& d) {
             rt::path_estimator e;
             if (!rt::parse_estimator(v, e)) stop_parsing("--estimator needs nee, bsdf or mixture, got '" + v + "'");
             o.estimator = e;
+        } else if (arg == "--sky-map") {
+            o.sky_map = next();
         } else if (arg == "--filter") {
             const std::string v = next();
             try {
@@ -349,6 +355,7 @@ options parse_arguments(int argc, char** argv, const description& d) {
     if (!o.aovs.empty() && (xml || o.samples)) stop_parsing("--aov applies to text scenes and models, without --samples");
     if (!o.aovs.empty() && o.output.empty()) stop_parsing("--aov needs -o FILE (the guides are written beside it)");
     if (o.aov_only && (o.time_budget || o.preview)) stop_parsing("--aov-only renders no image: not with --time or --preview");
+    if (xml && o.sky_map) stop_parsing("--sky-map applies to text scenes and models (an XML scene has its own lights)");
     if (xml && (o.look_from || o.look_at || o.fov))
         stop_parsing("--look-from, --look-at and --fov apply to text scenes and models (XML cameras are the file's)");
     if (xml && o.path_integrator && o.cull_back_faces) stop_parsing("--bfc applies to the Whitted integrator only");
@@ -435,6 +442,7 @@ void options::apply(rt::camera& cam) const {
     if (look_from) cam.lookfrom = *look_from;
     if (look_at) cam.lookat = *look_at;
     if (fov) cam.vfov = *fov;
+    if (sky_map) cam.sky_map = rt::load_sky_map(*sky_map, 1.0);
     cam.settings.quiet = quiet;
     // Ctrl-C during the render: the image so far (see the top).
     catch_interrupts();

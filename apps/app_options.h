@@ -70,6 +70,7 @@ struct options {
     std::optional<rt::pixel_filter> filter;      // --filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C]
     std::optional<rt::point3> look_from, look_at; // --look-from X,Y,Z, --look-at X,Y,Z (text scenes, models)
     std::optional<double> fov;                    // --fov DEGREES: the vertical field of view
+    std::optional<std::string> sky_map;           // --sky-map FILE: a lat-long sky lighting the scene (camera::sky_map)
     std::optional<double> time_budget;            // --time SECONDS: passes of samples until it is spent
     std::optional<double> preview;                // --preview SECONDS: -o rewritten after passes this far apart
     std::vector<std::string> aovs;                // --aov albedo,normal,depth,position: denoiser guides (render/guides.h)

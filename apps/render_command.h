@@ -307,29 +307,48 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
     std::exit(130);
 }
 
+// What the path tracer does not take from a course scene yet, refused before rendering (an image
+// without it would be wrong): the texture maps of homework 4, and more than one environment light.
+// `program` names the app in the warning that the cameras' distribution settings are not taken
+// (--spp replaces NumSamples; no lens); null: no warning. Point, directional, spot, area, object
+// and environment lights carry over (xml_path_compiled, xml_path_environment).
+inline void check_xml_path_scene(const char* program, const std::string& path, const rt::whitted_scene& scene) {
+    if (scene.environment_lights.size() > 1)
+        throw rt::scene_error(path + ": --integrator path takes one environment light; this scene has " +
+                              std::to_string(scene.environment_lights.size()) + ": render it in Whitted mode (without --integrator)");
+    if (!scene.textured_objects.empty() || scene.background_texture)
+        throw rt::scene_error(path + ": --integrator path does not take the course's texture maps yet: "
+                              "render this scene in Whitted mode (without --integrator)");
+    for (const rt::view_camera& c : scene.cameras)
+        if (program && (c.samples > 1 || c.aperture > 0)) {
+            std::fprintf(stderr, "%s: warning: --integrator path takes --spp rather than <NumSamples>, and renders "
+                                 "through a pinhole (no <ApertureSize>)\n", program);
+            break;
+        }
+}
+
+// What the path tracer's rays that leave a course scene see: its environment light, radiance
+// times pi as for every course light, seen by every ray and light-sampled (environment_map.h: the
+// course's orientation and nearest texels); else the background, seen by camera rays alone.
+inline rt::environment xml_path_environment(const rt::whitted_scene& scene) {
+    if (scene.environment_lights.empty()) return rt::environment::backdrop(rt::vec3f(scene.background));
+    const rt::environment_light& e = scene.environment_lights[0];
+    if (!e.map) throw rt::scene_error("environment light has no image");
+    try {
+        return rt::environment::image_based(std::make_shared<const rt::environment_map>(*e.map, float(rt::pi)));
+    } catch (const rt::scene_error& error) {
+        throw rt::scene_error(e.path + ": " + error.what());
+    }
+}
+
 // A course scene through the path tracer (xml_path_settings says how), camera by camera.
 inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
                                    const std::vector<std::string>& outputs) {
-    // What the path tracer does not take from a course scene yet: environment lights and the
-    // texture maps of homework 4 are refused (an image without them would be wrong); the
-    // cameras' distribution settings are named in a warning (--spp replaces NumSamples; no lens).
-    // Point, directional, spot, area and object lights carry over (xml_path_compiled).
-    if (!scene.environment_lights.empty())
-        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's environment "
-                              "lights yet: render this scene in Whitted mode (without --integrator)");
-    if (!scene.textured_objects.empty() || scene.background_texture)
-        throw rt::scene_error(opt.positional[0] + ": --integrator path does not take the course's texture maps yet: "
-                              "render this scene in Whitted mode (without --integrator)");
-    for (const rt::view_camera& c : scene.cameras)
-        if (c.samples > 1 || c.aperture > 0) {
-            std::fprintf(stderr, "render: warning: --integrator path takes --spp rather than <NumSamples>, and renders "
-                                 "through a pinhole (no <ApertureSize>)\n");
-            break;
-        }
+    check_xml_path_scene("render", opt.positional[0], scene);
     rt::render_settings settings = xml_path_settings(opt);
     catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
     settings.stop = &interrupt_requested;
-    const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
+    const rt::environment env = xml_path_environment(scene);
     // One compiled scene for every camera, around the first (as the Whitted integrator's).
     const rt::compiled_scene compiled = xml_path_compiled(scene);
     const size_t cameras = scene.cameras.size();

@@ -112,8 +112,13 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
     // Every image is rendered before any is written: a failure leaves none of them behind.
     std::vector<rt::image> images;
     if (opt.path_integrator) {
+        // Refused as render refuses it; rank 0 warns.
+        rt::mpi::together(comm, [&] {
+            app::check_xml_path_scene(rank == 0 ? "render_mpi" : nullptr, scene_path, scene);
+            return 0;
+        });
         const rt::render_settings settings = app::xml_path_settings(opt);
-        const rt::environment env = rt::environment::backdrop(rt::vec3f(scene.background));
+        const rt::environment env = rt::mpi::together(comm, [&] { return app::xml_path_environment(scene); });
         // One compiled scene for every camera, around the first, as render compiles it (every
         // rank compiles it; a failure anywhere is agreed on).
         const rt::compiled_scene compiled = rt::mpi::together(comm, [&] { return app::xml_path_compiled(scene); });

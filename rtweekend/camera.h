@@ -37,6 +37,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -88,6 +89,10 @@ class camera {
     double focus_dist = 10;   // Distance from camera lookfrom point to plane of perfect focus
 
     std::optional<color> background; // Unset: the book's sky gradient; set: this constant colour
+    // Beyond the book: a lat-long picture of the radiance from every direction (an HDR sky,
+    // render/environment_map.h), which lights the scene and is light-sampled; it replaces the
+    // background and the book's sky.
+    std::shared_ptr<const environment_map> sky_map;
     // Beyond the book: the pixel reconstruction filter (render/pixel_filter.h): the book's box by
     // default, or pixel_filter::tent(), gaussian(), mitchell(), each sampled, never splatted.
     pixel_filter filter = pixel_filter::box();
@@ -138,8 +143,10 @@ class camera {
         return s;
     }
 
-    // What a ray that leaves the scene sees: the book's sky, or the background colour (checked).
+    // What a ray that leaves the scene sees: the sky map, the book's sky, or the background colour
+    // (checked).
     environment sky() const {
+        if (sky_map) return environment::image_based(sky_map);
         if (!background) return environment::sky();
         // The renderer works in float: a background beyond float's range would be infinite there.
         constexpr double float_max = std::numeric_limits<float>::max();

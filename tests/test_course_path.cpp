@@ -93,7 +93,7 @@ whitted_scene lit_floor(test::scratch_dir& dir, const std::string& at, const std
 }
 
 // The scene's first camera through our path tracer, with its lights as `render --integrator path`
-// converts them (xml_path_compiled): the direct light alone, its mean over the pixels. Lights no
+// converts them (xml_path_compiled, xml_path_environment): the direct light alone, its mean over the pixels. Lights no
 // ray hits are found by next-event estimation from the first hit (max_depth 1); an emitter the
 // rays can hit is found by it and by the first hit's scattered ray, whose weights sum to one
 // (multiple importance sampling), so that ray must be traced too (max_depth 2).
@@ -103,7 +103,7 @@ pixel_mean ours_direct_mean(const whitted_scene& scene, int samples, int max_dep
     settings.samples_per_pixel = samples;
     settings.max_depth = max_depth;
     settings.quiet = true;
-    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), environment::backdrop(vec3f(0, 0, 0)), settings).img);
+    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), app::xml_path_environment(scene), settings).img);
 }
 double ours_direct(const whitted_scene& scene) { return ours_direct_mean(scene, 4).mean; }
 
@@ -428,6 +428,37 @@ TEST_CASE("course path tracer: light meshes and spheres in ours, as bright as in
         CHECK(ours_direct_mean(scene, 4, 2).mean == doctest::Approx(100 * pi_d).epsilon(1e-5));
         CHECK(mean_of(render_whitted(scene, 0).img).mean == doctest::Approx(100).epsilon(1e-5));
     }
+}
+
+TEST_CASE("course path tracer: an environment light in ours, a floor pi kd L as in the course's") {
+    // A floor z = 0 of kd 0.5 under a lat-long sky of 100 everywhere (a 4 x 2 PFM): pi kd L = 157.1
+    // in the course's units (test_course_environment.cpp), and in ours with the sky's radiance
+    // times pi, light-sampled (render's xml_path_environment). The camera sees nothing else.
+    test::scratch_dir dir("course_path_env");
+    std::string pfm = "PF\n4 2\n-1\n";
+    for (int i = 0; i < 4 * 2 * 3; ++i) {
+        const float v = 100;
+        pfm += std::string(reinterpret_cast<const char*>(&v), 4);
+    }
+    dir.write("grey.pfm", pfm);
+    auto scene_with = [&](const std::string& lights) {
+        return load_xml_scene(dir.write(
+            "s.xml", "<Scene><MaxRecursionDepth>0</MaxRecursionDepth>" + camera("1 0 1", "-1 0 -1", 4, "") +
+                         "<Textures><Images><Image id=\"1\">grey.pfm</Image></Images></Textures><Lights>" + lights +
+                         "</Lights><Materials><Material id=\"1\"><DiffuseReflectance>0.5 0.5 0.5</DiffuseReflectance></Material></Materials>"
+                         "<VertexData>-50 -50 0 50 -50 0 50 50 0 -50 50 0</VertexData><Objects><Mesh id=\"1\"><Material>1</Material>"
+                         "<Faces>1 2 3 1 3 4</Faces></Mesh></Objects></Scene>"));
+    };
+    const std::string sky = "<SphericalDirectionalLight id=\"1\"><ImageId>1</ImageId></SphericalDirectionalLight>";
+    const whitted_scene scene = scene_with(sky);
+    REQUIRE(scene.warnings.empty());
+    const pixel_mean ours = ours_direct_mean(scene, 256, 2);
+    INFO(ours.mean << " +- " << ours.error);
+    CHECK(std::fabs(ours.mean - pi_d * 0.5 * 100) <= 5 * ours.error + 1e-3 * pi_d * 50);
+    CHECK(ours.error < 0.01 * pi_d * 50);
+    // Two environment lights: one line.
+    test::check_scene_error([&] { app::check_xml_path_scene(nullptr, "s.xml", scene_with(sky + sky)); },
+                            {"s.xml", "--integrator path takes one environment light; this scene has 2"});
 }
 
 } // namespace test_course_path

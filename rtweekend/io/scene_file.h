@@ -13,6 +13,9 @@
 //                                estimator nee|bsdf|mixture | sampler sobol|stratified|independent |
 //                                filter box|tent[:R]|gaussian[:SIGMA]|mitchell[:B,C] (pixel_filter.h)
 //   background r g b             the same as camera background r g b
+//   sky_map FILE [scale]         a lat-long picture of the sky (EXR, HDR, PFM; 8-bit pictures
+//                                sRGB-decoded) times scale (1), lighting the scene and seen by rays
+//                                that leave it; relative to the scene file (io/sky_map_file.h)
 //   texture NAME solid r g b     a named texture, used where a colour may vary as @NAME:
 //   texture NAME checker S <c> <c>      book 2's 3-D checker of cell size S; <c> is r g b or @NAME
 //   texture NAME image FILE             an image (PNG, JPEG, BMP, HDR...), relative to the scene file
@@ -139,6 +142,7 @@ RTWEEKEND_ENGINE_FUNCTION scene_description decode_scene(const std::string& text
 #include "../triangle.h"
 #include "../core/input_limits.h"
 #include "obj.h"
+#include "sky_map_file.h"
 #include "obj_model.h"
 #include "ply.h"
 
@@ -635,6 +639,17 @@ inline void scene_parser::line(const scene_line& line) {
         scene_.point_lights.push_back(parse_point_light_line(line));
     } else if (word == "directional_light") {
         scene_.directional_lights.push_back(parse_directional_light_line(line));
+    } else if (word == "sky_map") {
+        if (line.size() != 2 && line.size() != 3) line.fail("expected: sky_map file [scale]");
+        const double scale = line.size() == 3 ? line.number(2, "sky_map scale") : 1.0;
+        if (!(scale >= 0)) line.fail("sky_map scale must be at least 0, got " + line.word(2));
+        const std::string file = resolve(line.word(1));
+        try {
+            scene_.cam.sky_map = load_sky_map(file, scale);
+        } catch (const scene_error& e) {
+            line.fail(e.what());
+        }
+        scene_.files.push_back(file);
     } else if (word == "background") {
         line.expect_count(4, "background r g b");
         color bg = line.vector(1, "background");
@@ -642,8 +657,8 @@ inline void scene_parser::line(const scene_line& line) {
         scene_.cam.background = bg;
     } else {
         line.fail("unknown directive '" + word +
-                  "' (expected camera, background, texture, sphere, moving_sphere, triangle, quad, box, mesh, "
-                  "medium, group, end, instance, point_light or directional_light)");
+                  "' (expected camera, background, sky_map, texture, sphere, moving_sphere, triangle, quad, box, "
+                  "mesh, medium, group, end, instance, point_light or directional_light)");
     }
 }
 

@@ -150,7 +150,12 @@ template <bool NeeOnly, bool UserMaterials>
 void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit& hit) {
     ++rays;
     if (!found) {
-        if (!(depth > 0 && env.camera_rays_only)) radiance += throughput * env.eval(r.dir);
+        if (!(depth > 0 && env.camera_rays_only)) {
+            // An environment map is light-sampled at every vertex too (below): weighed as an
+            // emitter that is hit.
+            const float weight = env.map && nee() && !count_emission_fully ? power_heuristic(last_pdf, env.map->pdf(r.dir)) : 1.0f;
+            radiance += throughput * env.eval(r.dir) * weight;
+        }
         return finish();
     }
     // The material at the hit: the scene's, or one built here, as a user-written hittable reports
@@ -228,6 +233,24 @@ void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit&
         light_choice lc;
         dimension_uniforms u = light_uniforms(ps, depth);
         if (lights.sample(hit.p, u, lc)) add_light_sample(lc);
+    }
+    // An environment map: a direction of its own at every vertex, beside the scene's light (two
+    // estimators of two lights, summed), from the light's dimensions when the scene has no other
+    // light, else from the sample's stream; weighed against material sampling, which may find it too.
+    if (nee() && env.map && has_density) {
+        dimension_uniforms u = lights.empty() ? light_uniforms(ps, depth)
+                                              : dimension_uniforms(ps, dimension_uniforms::stream, dimension_uniforms::stream);
+        const auto [u1, u2] = u.next_2d();
+        light_choice lc;
+        vec3f le;
+        if (env.map->sample(u1, u2, lc.wi, lc.pdf, le) && !is_black(le)) {
+            const vec3f f = vm.eval(lc.wi);
+            if (!is_black(f)) {
+                ++rays;
+                if (!scene.occluded(spawn_ray(hit, lc.wi, std::numeric_limits<float>::infinity(), in_volume)))
+                    radiance += throughput * f * le * (power_heuristic(lc.pdf, vm.pdf(lc.wi)) / lc.pdf);
+            }
+        }
     }
     // The mixture below covers area lights only; a point light, which no direction can hit,
     // is sampled on its own (next-event estimation without a second strategy to weigh).
