@@ -106,6 +106,21 @@ def main(out):
                                    {"attributes": attrs, "indices": idx, "material": 1}]}],
         "nodes": [{"mesh": 0, "translation": [0, 0, -1]}], "scenes": [{"nodes": [0]}]})
 
+    # TANGENT (a normal map's frame) and COLOR_0 (RGBA as normalised shorts), placed twice
+    # (instances).
+    b = Builder()
+    attrs, idx = square(b)
+    attrs["TANGENT"] = b.add("f", [0.7071, 0.7071, 0, 1] * 4, 5126, "VEC4", 4)
+    attrs["COLOR_0"] = b.add("H", [65535, 0, 0, 65535, 0, 65535, 0, 65535, 0, 0, 65535, 32768, 65535, 65535, 65535, 0],
+                             5123, "VEC4", 4, normalized=True)
+    seeds["attributes.gltf"] = b.gltf({
+        "materials": [{"normalTexture": {"index": 0}, "pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 1, 1]}}],
+        "textures": [{"source": 0}],
+        "images": [{"uri": data_uri("image/png", png(1, 1, [218, 128, 218]))}],
+        "meshes": [{"primitives": [{"attributes": attrs, "indices": idx, "material": 0}]}],
+        "nodes": [{"mesh": 0, "translation": [-1.5, 0, 0]}, {"mesh": 0, "rotation": [0, 0, 0.7071068, 0.7071068]}],
+        "scenes": [{"nodes": [0, 1]}]})
+
     b = Builder()
     pos = b.add("f", [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0], 5126, "VEC3", 6)
     fan = b.add("B", [0, 1, 3, 2], 5121, "SCALAR", 4)
