@@ -142,6 +142,14 @@ inline rt::render_settings text_scene_settings(const options& opt, const rt::cam
 // as kd E cos: pi times the radiance a Lambertian surface of albedo kd reflects under a light of
 // intensity I, so the lights' intensities are taken times pi, and the direct light matches the
 // Whitted image's.
+// The samples per pixel of course camera c through the path tracer: --spp, else the camera's
+// <NumSamples> when it asks for more than one, else 64 (a camera of homework 1 or 2 takes one
+// sample, made for the Whitted integrator).
+inline int xml_path_samples(const options& opt, const rt::view_camera& c) {
+    if (opt.spp) return *opt.spp;
+    return c.samples > 1 ? c.samples : 64;
+}
+
 inline rt::render_settings xml_path_settings(const options& opt) {
     rt::render_settings settings;
     settings.samples_per_pixel = opt.spp.value_or(64);
@@ -309,8 +317,7 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 
 // What the path tracer does not take from a course scene yet, refused before rendering (an image
 // without it would be wrong): the texture maps of homework 4, and more than one environment light.
-// `program` names the app in the warning that the cameras' distribution settings are not taken
-// (--spp replaces NumSamples; no lens); null: no warning. Point, directional, spot, area, object
+// `program` names the app in the warning that the cameras' lenses are not taken; null: no warning. Point, directional, spot, area, object
 // and environment lights carry over (xml_path_compiled, xml_path_environment).
 inline void check_xml_path_scene(const char* program, const std::string& path, const rt::whitted_scene& scene) {
     if (scene.environment_lights.size() > 1)
@@ -320,9 +327,8 @@ inline void check_xml_path_scene(const char* program, const std::string& path, c
         throw rt::scene_error(path + ": --integrator path does not take the course's texture maps yet: "
                               "render this scene in Whitted mode (without --integrator)");
     for (const rt::view_camera& c : scene.cameras)
-        if (program && (c.samples > 1 || c.aperture > 0)) {
-            std::fprintf(stderr, "%s: warning: --integrator path takes --spp rather than <NumSamples>, and renders "
-                                 "through a pinhole (no <ApertureSize>)\n", program);
+        if (program && c.aperture > 0) {
+            std::fprintf(stderr, "%s: warning: --integrator path renders through a pinhole (no <ApertureSize>)\n", program);
             break;
         }
 }
@@ -356,6 +362,7 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
         exit_if_interrupted_before(i, cameras);
         rt::camera_frame frame = rt::view_camera_frame(scene.cameras[i]);
         if (opt.filter) frame.filter = *opt.filter;
+        settings.samples_per_pixel = xml_path_samples(opt, scene.cameras[i]);
         rt::render_result r = rt::path_trace(compiled, frame, env, settings);
         const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
         if (r.stats.interrupted) {

@@ -117,7 +117,7 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
             app::check_xml_path_scene(rank == 0 ? "render_mpi" : nullptr, scene_path, scene);
             return 0;
         });
-        const rt::render_settings settings = app::xml_path_settings(opt);
+        rt::render_settings settings = app::xml_path_settings(opt);
         const rt::environment env = rt::mpi::together(comm, [&] { return app::xml_path_environment(scene); });
         // One compiled scene for every camera, around the first, as render compiles it (every
         // rank compiles it; a failure anywhere is agreed on).
@@ -125,6 +125,7 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
         for (const rt::view_camera& c : scene.cameras) {
             rt::camera_frame frame = rt::view_camera_frame(c);
             if (opt.filter) frame.filter = *opt.filter;
+            settings.samples_per_pixel = app::xml_path_samples(opt, c);
             rt::render_result r = rt::mpi::path_trace(comm, compiled, frame, env, settings);
             images.push_back(std::move(r.img));
         }
