@@ -228,9 +228,9 @@ inline rt::hittable_list xml_path_world(const rt::whitted_scene& scene) {
 }
 
 // A course scene compiled for the path tracer around its first camera, with its point,
-// directional and spot lights (above), its light objects (xml_path_world) and its area lights:
+// directional and spot lights (above), its light objects (xml_path_world), its area lights:
 // squares no ray hits, radiance times pi as for the others, their sides along the course's frame
-// about the normal (course_lights.h).
+// about the normal (course_lights.h), and its kd texture maps.
 inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
     rt::compiled_scene compiled = rt::compile_scene(xml_path_world(scene), scene.cameras[0].position, xml_path_lights(scene),
                                                     xml_path_directional_lights(scene));
@@ -240,6 +240,16 @@ inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
         rt::vec3 u, v;
         rt::course_frame(l.normal / len, u, v);
         rt::add_hidden_square_light(compiled, l.position, l.size * u, l.size * v, l.radiance * rt::pi);
+    }
+    // Colour maps (check_xml_path_scene refuses the others): the object's material, plain, looks
+    // its kd up at each hit in the course's way (course_kd_texture), as a Lambertian albedo or
+    // blinn_phong's diffuse lobe.
+    for (const rt::textured_object& o : scene.textured_objects) {
+        auto kd = std::make_shared<const rt::course_kd_texture>(o);
+        const uint32_t index = compiled.textures.add(*kd);
+        compiled.owned_textures.push_back(kd);
+        for (rt::compiled_material& m : compiled.materials)
+            if (m.source == o.surface.get() && m.takes_colour()) m.texture = index;
     }
     return compiled;
 }
@@ -316,16 +326,32 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 }
 
 // What the path tracer does not take from a course scene yet, refused before rendering (an image
-// without it would be wrong): the texture maps of homework 4, and more than one environment light.
+// without it would be wrong): texture maps other than kd's on plain materials, a background
+// image, and more than one environment light.
 // `program` names the app in the warning that the cameras' lenses are not taken; null: no warning. Point, directional, spot, area, object
 // and environment lights carry over (xml_path_compiled, xml_path_environment).
 inline void check_xml_path_scene(const char* program, const std::string& path, const rt::whitted_scene& scene) {
     if (scene.environment_lights.size() > 1)
         throw rt::scene_error(path + ": --integrator path takes one environment light; this scene has " +
                               std::to_string(scene.environment_lights.size()) + ": render it in Whitted mode (without --integrator)");
-    if (!scene.textured_objects.empty() || scene.background_texture)
-        throw rt::scene_error(path + ": --integrator path does not take the course's texture maps yet: "
-                              "render this scene in Whitted mode (without --integrator)");
+    // Texture maps: those that colour kd (replace_kd, blend_kd) on plain materials; not yet the
+    // others, nor a background image.
+    auto refuse = [&](const std::string& what) {
+        throw rt::scene_error(path + ": --integrator path does not take " + what +
+                              " yet: render this scene in Whitted mode (without --integrator)");
+    };
+    if (scene.background_texture) refuse("the course's background texture (replace_background)");
+    for (const rt::textured_object& o : scene.textured_objects) {
+        using decal = rt::texture_map::decal_t;
+        for (const rt::texture_map& m : o.maps)
+            if (m.decal != decal::replace_kd && m.decal != decal::blend_kd)
+                refuse(std::string("the course's texture maps of decal mode ") +
+                       (m.decal == decal::replace_ks ? "replace_ks" : m.decal == decal::replace_all ? "replace_all"
+                        : m.decal == decal::replace_normal ? "replace_normal" : m.decal == decal::bump_normal ? "bump_normal"
+                        : "replace_background"));
+        if (o.surface && (o.surface->kind != rt::whitted_material::kind_t::plain || o.surface->brdf))
+            refuse("texture maps on a mirror, conductor, dielectric or BRDF material");
+    }
     for (const rt::view_camera& c : scene.cameras)
         if (program && c.aperture > 0) {
             std::fprintf(stderr, "%s: warning: --integrator path renders through a pinhole (no <ApertureSize>)\n", program);

@@ -34,6 +34,7 @@
 #include "../core/rng.h"
 #include "../core/vec3f.h"
 #include "../image/image.h"
+#include "../texture.h"
 #include "../transform.h"
 #include "../vec3.h"
 #include "../whitted_material.h"
@@ -43,6 +44,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace rt {
@@ -179,9 +181,41 @@ struct textured_object {
     vec3 offset{0, 0, 0};
 };
 
+// A textured object's diffuse reflectance at a point as its colour maps make it (replace_kd, then
+// blend_kd, in the file's order, from its material's kd), for a renderer that looks kd up as a
+// texture (render --integrator path; the Whitted integrator applies every map itself). (u, v) are
+// a mesh's texture coordinates at the point; a sphere's are worked out from p as the course does.
+// Other decals leave kd as it is.
+class course_kd_texture : public texture {
+  public:
+    explicit course_kd_texture(textured_object object) : object_(std::move(object)), inverse_(object_.linear.inverse()) {}
+
+    color value(double u, double v, const point3& p) const override {
+        const vec3 q = inverse_ * (p - object_.offset); // the object's own frame
+        if (object_.shape == textured_object::shape_t::sphere) {
+            const double pi_d = 3.14159265358979323846;
+            const vec3 P = q - object_.center;
+            const double theta = std::acos(std::clamp(P.y() / object_.radius, -1.0, 1.0)), phi = std::atan2(P.z(), P.x());
+            u = (pi_d - phi) / (2 * pi_d);
+            v = theta / pi_d;
+        }
+        color kd = object_.surface->diffuse;
+        for (const texture_map& map : object_.maps) {
+            if (map.decal == texture_map::decal_t::replace_kd) kd = map.colour(u, v, q).to_double();
+            else if (map.decal == texture_map::decal_t::blend_kd) kd = (kd + map.colour(u, v, q).to_double()) / 2;
+        }
+        return kd;
+    }
+
+  private:
+    textured_object object_;
+    mat3 inverse_;
+};
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
+using rt::course_kd_texture;
 using rt::course_perlin;
 using rt::texture_map;
 using rt::textured_object;

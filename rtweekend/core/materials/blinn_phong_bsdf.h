@@ -77,7 +77,14 @@ struct blinn_phong_bsdf {
     }
     float lobe_weight() const { return max_component(albedo); }
     float reversal_ratio(const vec3f&, const vec3f&, bool, const material_sample&) const { return 1; }
-    static constexpr bool takes_texture = false;
+    // A texture colours the diffuse lobe (a CENG795 texture map's kd): kept within 1 - specular
+    // per channel, so that the two lobes reflect at most what they receive.
+    static constexpr bool takes_texture = true;
+    void set_colour(const vec3f& c) {
+        albedo = {std::fmin(c.x, std::fmax(0.0f, 1.0f - specular.x)), std::fmin(c.y, std::fmax(0.0f, 1.0f - specular.y)),
+                  std::fmin(c.z, std::fmax(0.0f, 1.0f - specular.z))};
+    }
+    vec3f colour() const { return albedo; }
 
     // The probability sample() draws from the glossy lobe.
     float glossy_probability() const {
