@@ -230,7 +230,7 @@ inline rt::hittable_list xml_path_world(const rt::whitted_scene& scene) {
 // A course scene compiled for the path tracer around its first camera, with its point,
 // directional and spot lights (above), its light objects (xml_path_world), its area lights:
 // squares no ray hits, radiance times pi as for the others, their sides along the course's frame
-// about the normal (course_lights.h), and its kd texture maps.
+// about the normal (course_lights.h), and its kd texture maps and meshes' normal maps.
 inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
     rt::compiled_scene compiled = rt::compile_scene(xml_path_world(scene), scene.cameras[0].position, xml_path_lights(scene),
                                                     xml_path_directional_lights(scene));
@@ -243,13 +243,31 @@ inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
     }
     // Colour maps (check_xml_path_scene refuses the others): the object's material, plain, looks
     // its kd up at each hit in the course's way (course_kd_texture), as a Lambertian albedo or
-    // blinn_phong's diffuse lobe.
+    // blinn_phong's diffuse lobe. A mesh's normal map (the last, as the course applies them in order) goes beside its material
+    // in the normal-map table: the texel's 2 c - 1 in the frame of dp/du, dp/dv and the normal,
+    // the course's frame on a mesh.
     for (const rt::textured_object& o : scene.textured_objects) {
-        auto kd = std::make_shared<const rt::course_kd_texture>(o);
-        const uint32_t index = compiled.textures.add(*kd);
-        compiled.owned_textures.push_back(kd);
-        for (rt::compiled_material& m : compiled.materials)
-            if (m.source == o.surface.get() && m.takes_colour()) m.texture = index;
+        using decal = rt::texture_map::decal_t;
+        const bool colours = std::any_of(o.maps.begin(), o.maps.end(), [](const rt::texture_map& m) {
+            return m.decal == decal::replace_kd || m.decal == decal::blend_kd;
+        });
+        if (colours) {
+            auto kd = std::make_shared<const rt::course_kd_texture>(o);
+            const uint32_t index = compiled.textures.add(*kd);
+            compiled.owned_textures.push_back(kd);
+            for (rt::compiled_material& m : compiled.materials)
+                if (m.source == o.surface.get() && m.takes_colour()) m.texture = index;
+        }
+        const rt::texture_map* normals = nullptr;
+        for (const rt::texture_map& m : o.maps)
+            if (m.decal == decal::replace_normal && m.pattern == rt::texture_map::pattern_t::image) normals = &m;
+        if (!normals) continue;
+        auto n = std::make_shared<const rt::course_normal_texture>(*normals);
+        const uint32_t index = compiled.textures.add(*n);
+        compiled.owned_textures.push_back(n);
+        compiled.normal_maps.resize(compiled.materials.size());
+        for (size_t k = 0; k < compiled.materials.size(); ++k)
+            if (compiled.materials[k].source == o.surface.get()) compiled.normal_maps[k] = {index, 1.0f, false};
     }
     return compiled;
 }
@@ -334,7 +352,8 @@ inline void check_xml_path_scene(const char* program, const std::string& path, c
     if (scene.environment_lights.size() > 1)
         throw rt::scene_error(path + ": --integrator path takes one environment light; this scene has " +
                               std::to_string(scene.environment_lights.size()) + ": render it in Whitted mode (without --integrator)");
-    // Texture maps: those that colour kd (replace_kd, blend_kd) on plain materials; not yet the
+    // Texture maps: those that colour kd (replace_kd, blend_kd) on plain materials, and a mesh's
+    // normal map (replace_normal; the course ignores one that is not an image); not yet the
     // others, nor a background image.
     auto refuse = [&](const std::string& what) {
         throw rt::scene_error(path + ": --integrator path does not take " + what +
@@ -343,14 +362,21 @@ inline void check_xml_path_scene(const char* program, const std::string& path, c
     if (scene.background_texture) refuse("the course's background texture (replace_background)");
     for (const rt::textured_object& o : scene.textured_objects) {
         using decal = rt::texture_map::decal_t;
-        for (const rt::texture_map& m : o.maps)
-            if (m.decal != decal::replace_kd && m.decal != decal::blend_kd)
+        for (const rt::texture_map& m : o.maps) {
+            if (m.decal == decal::replace_normal && m.pattern == rt::texture_map::pattern_t::image &&
+                o.shape != rt::textured_object::shape_t::mesh)
+                refuse("the course's normal maps on spheres");
+            if (m.decal != decal::replace_kd && m.decal != decal::blend_kd && m.decal != decal::replace_normal)
                 refuse(std::string("the course's texture maps of decal mode ") +
                        (m.decal == decal::replace_ks ? "replace_ks" : m.decal == decal::replace_all ? "replace_all"
                         : m.decal == decal::replace_normal ? "replace_normal" : m.decal == decal::bump_normal ? "bump_normal"
                         : "replace_background"));
-        if (o.surface && (o.surface->kind != rt::whitted_material::kind_t::plain || o.surface->brdf))
-            refuse("texture maps on a mirror, conductor, dielectric or BRDF material");
+        }
+        const bool colours = std::any_of(o.maps.begin(), o.maps.end(), [](const rt::texture_map& m) {
+            return m.decal == decal::replace_kd || m.decal == decal::blend_kd;
+        });
+        if (colours && o.surface && (o.surface->kind != rt::whitted_material::kind_t::plain || o.surface->brdf))
+            refuse("kd texture maps on a mirror, conductor, dielectric or BRDF material");
     }
     for (const rt::view_camera& c : scene.cameras)
         if (program && c.aperture > 0) {

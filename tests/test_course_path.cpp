@@ -520,8 +520,28 @@ TEST_CASE("course path tracer: kd texture maps in ours, the same direct light as
     CHECK(glossy_at("0.9 -0.3 3") == doctest::Approx(glossy).epsilon(1e-3));
     CHECK(ours_direct(scene_at("-0.3 0.7 3", "0 0 -1", "0 0 0", image_map, square)) !=
           doctest::Approx(ours_direct(scene_at("0.9 -0.3 3", "0 0 -1", "0 0 0", image_map, square))));
-    // The decals ours does not take yet: one line each.
-    for (const char* decal : {"replace_ks", "replace_all", "replace_normal", "bump_normal"}) {
+    // A mesh's normal map (replace_normal): one texel, (218, 128, 218), the normal 2 c / 255 - 1 =
+    // (0.71, 0.004, 0.71) in (T, B, N) = (dP/du, dP/dv, n), tilted towards +x on the square as it
+    // is and towards +y on the square turned 90 degrees about z: the same light as the course's.
+    dir.write("n.ppm", "P3\n1 1\n255\n218 128 218\n");
+    const std::string normal_map = "<Images><Image id=\"2\">n.ppm</Image></Images><TextureMap id=\"1\" type=\"image\"><ImageId>2</ImageId>"
+                                   "<DecalMode>replace_normal</DecalMode></TextureMap>";
+    const std::string turned = "<Transformations><Rotation id=\"1\">90 0 0 1</Rotation></Transformations>" +
+                               std::string(square).replace(square.find("<Faces>"), 0, "<Transformations>r1</Transformations>");
+    for (const std::string* objects : {&square, &turned})
+        for (const char* from : {"-0.6 0.7 3", "0.8 -0.3 3"}) {
+            CAPTURE(from);
+            const whitted_scene scene = scene_at(from, "0 0 -1", "0 0 0", normal_map, *objects);
+            REQUIRE(scene.warnings.empty());
+            app::check_xml_path_scene(nullptr, "s.xml", scene);
+            const double course = mean_of(render_whitted(scene, 0).img).mean;
+            CHECK(course > 0.01);
+            CHECK(ours_direct(scene) == doctest::Approx(course).epsilon(1e-4));
+        }
+    // The decals ours does not take yet, and normal maps on spheres: one line each.
+    test::check_scene_error([&] { app::check_xml_path_scene(nullptr, "s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", normal_map, ball)); },
+                            {"s.xml", "normal maps on spheres"});
+    for (const char* decal : {"replace_ks", "replace_all", "bump_normal"}) {
         CAPTURE(decal);
         std::string other = image_map;
         other.replace(other.find("replace_kd"), 10, decal);

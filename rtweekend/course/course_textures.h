@@ -212,10 +212,24 @@ class course_kd_texture : public texture {
     mat3 inverse_;
 };
 
+// A mesh's normal map (replace_normal, an image) as a texture of colours in [0, 1]: the texel at
+// the mesh's (u, v), interpolated as the map says, over 255, so that 2 c - 1 is the course's
+// tangent-space normal, for a renderer that bends normals with such textures (render
+// --integrator path; compiled_scene::normal_maps).
+class course_normal_texture : public texture {
+  public:
+    explicit course_normal_texture(texture_map map) : map_(std::move(map)) {}
+    color value(double u, double v, const point3&) const override { return (map_.lookup(u, v) / 255.0f).to_double(); }
+
+  private:
+    texture_map map_;
+};
+
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
 using rt::course_kd_texture;
+using rt::course_normal_texture;
 using rt::course_perlin;
 using rt::texture_map;
 using rt::textured_object;
