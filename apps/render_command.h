@@ -345,10 +345,9 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
 
 // What the path tracer does not take from a course scene yet, refused before rendering (an image
 // without it would be wrong): texture maps other than kd's on plain materials, a background
-// image, and more than one environment light.
-// `program` names the app in the warning that the cameras' lenses are not taken; null: no warning. Point, directional, spot, area, object
+// image, and more than one environment light. Point, directional, spot, area, object
 // and environment lights carry over (xml_path_compiled, xml_path_environment).
-inline void check_xml_path_scene(const char* program, const std::string& path, const rt::whitted_scene& scene) {
+inline void check_xml_path_scene(const std::string& path, const rt::whitted_scene& scene) {
     if (scene.environment_lights.size() > 1)
         throw rt::scene_error(path + ": --integrator path takes one environment light; this scene has " +
                               std::to_string(scene.environment_lights.size()) + ": render it in Whitted mode (without --integrator)");
@@ -378,11 +377,6 @@ inline void check_xml_path_scene(const char* program, const std::string& path, c
         if (colours && o.surface && (o.surface->kind != rt::whitted_material::kind_t::plain || o.surface->brdf))
             refuse("kd texture maps on a mirror, conductor, dielectric or BRDF material");
     }
-    for (const rt::view_camera& c : scene.cameras)
-        if (program && c.aperture > 0) {
-            std::fprintf(stderr, "%s: warning: --integrator path renders through a pinhole (no <ApertureSize>)\n", program);
-            break;
-        }
 }
 
 // What the path tracer's rays that leave a course scene see: its environment light, radiance
@@ -402,7 +396,7 @@ inline rt::environment xml_path_environment(const rt::whitted_scene& scene) {
 // A course scene through the path tracer (xml_path_settings says how), camera by camera.
 inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& scene,
                                    const std::vector<std::string>& outputs) {
-    check_xml_path_scene("render", opt.positional[0], scene);
+    check_xml_path_scene(opt.positional[0], scene);
     rt::render_settings settings = xml_path_settings(opt);
     catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
     settings.stop = &interrupt_requested;

@@ -112,9 +112,9 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
     // Every image is rendered before any is written: a failure leaves none of them behind.
     std::vector<rt::image> images;
     if (opt.path_integrator) {
-        // Refused as render refuses it; rank 0 warns.
+        // Refused as render refuses it.
         rt::mpi::together(comm, [&] {
-            app::check_xml_path_scene(rank == 0 ? "render_mpi" : nullptr, scene_path, scene);
+            app::check_xml_path_scene(scene_path, scene);
             return 0;
         });
         rt::render_settings settings = app::xml_path_settings(opt);

@@ -457,7 +457,7 @@ TEST_CASE("course path tracer: an environment light in ours, a floor pi kd L as 
     CHECK(std::fabs(ours.mean - pi_d * 0.5 * 100) <= 5 * ours.error + 1e-3 * pi_d * 50);
     CHECK(ours.error < 0.01 * pi_d * 50);
     // Two environment lights: one line.
-    test::check_scene_error([&] { app::check_xml_path_scene(nullptr, "s.xml", scene_with(sky + sky)); },
+    test::check_scene_error([&] { app::check_xml_path_scene("s.xml", scene_with(sky + sky)); },
                             {"s.xml", "--integrator path takes one environment light; this scene has 2"});
 }
 
@@ -502,7 +502,7 @@ TEST_CASE("course path tracer: kd texture maps in ours, the same direct light as
         const whitted_scene scene = scene_at(p.from, p.gaze, "0 0 0", p.maps, p.objects);
         REQUIRE(scene.warnings.empty());
         REQUIRE(scene.textured_objects.size() == 1);
-        app::check_xml_path_scene(nullptr, "s.xml", scene);
+        app::check_xml_path_scene("s.xml", scene);
         const double course = mean_of(render_whitted(scene, 0).img).mean;
         CHECK(course > 0.01);
         CHECK(ours_direct(scene) == doctest::Approx(course).epsilon(1e-4));
@@ -533,19 +533,19 @@ TEST_CASE("course path tracer: kd texture maps in ours, the same direct light as
             CAPTURE(from);
             const whitted_scene scene = scene_at(from, "0 0 -1", "0 0 0", normal_map, *objects);
             REQUIRE(scene.warnings.empty());
-            app::check_xml_path_scene(nullptr, "s.xml", scene);
+            app::check_xml_path_scene("s.xml", scene);
             const double course = mean_of(render_whitted(scene, 0).img).mean;
             CHECK(course > 0.01);
             CHECK(ours_direct(scene) == doctest::Approx(course).epsilon(1e-4));
         }
     // The decals ours does not take yet, and normal maps on spheres: one line each.
-    test::check_scene_error([&] { app::check_xml_path_scene(nullptr, "s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", normal_map, ball)); },
+    test::check_scene_error([&] { app::check_xml_path_scene("s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", normal_map, ball)); },
                             {"s.xml", "normal maps on spheres"});
     for (const char* decal : {"replace_ks", "replace_all", "bump_normal"}) {
         CAPTURE(decal);
         std::string other = image_map;
         other.replace(other.find("replace_kd"), 10, decal);
-        test::check_scene_error([&] { app::check_xml_path_scene(nullptr, "s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", other, square)); },
+        test::check_scene_error([&] { app::check_xml_path_scene("s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", other, square)); },
                                 {"s.xml", std::string("texture maps of decal mode ") + decal});
     }
 }

@@ -749,4 +749,43 @@ TEST_CASE("course scene: a MirrorReflectance without type=\"mirror\" is ignored,
     CHECK(render_whitted(plain, 0).img.pixel(0, 0).x() == 0);
 }
 
+TEST_CASE("course scene: a camera's lens in the path tracer's frame meets the course's focal plane") {
+    // ApertureSize 0.5, FocusDistance 4, near plane at 1 (ceng795-later.md 3.2): a pixel's pinhole
+    // ray dir meets the focal plane at p = e + (4 / dot(dir, -w)) dir; the frame's ray from any
+    // lens point through that pixel must pass through p, and start within 0.25 of e in the
+    // plane perpendicular to the gaze.
+    view_camera c;
+    c.position = vec3(1, 2, 3);
+    c.gaze = vec3(0.2, -0.1, -1);
+    c.up = vec3(0, 1, 0);
+    c.left = -0.5, c.right = 0.5, c.bottom = -0.4, c.top = 0.4;
+    c.near_distance = 1;
+    c.width = 10, c.height = 8;
+    c.aperture = 0.5;
+    c.focus_distance = 4;
+    const camera_frame frame = view_camera_frame(c).placed_in(point3(0, 0, 0));
+    CHECK(frame.thin_lens);
+    const vec3 w = -unit_vector(c.gaze), u = unit_vector(cross(c.up, w)), v = cross(w, u);
+    for (const auto& [i, j] : {std::pair<int, int>{0, 0}, {9, 7}, {3, 5}})
+        for (const auto& [lu, lv] : {std::pair<float, float>{0, 0}, {0.9f, 0}, {0, -0.9f}, {0.5f, 0.6f}}) {
+            CAPTURE(i);
+            CAPTURE(j);
+            CAPTURE(lu);
+            const vec3 q = c.position - c.near_distance * w + (c.left + (i + 0.5) * (c.right - c.left) / c.width) * u +
+                           (c.top - (j + 0.5) * (c.top - c.bottom) / c.height) * v;
+            const vec3 dir = unit_vector(q - c.position);
+            const vec3 p = c.position + (c.focus_distance / dot(dir, -w)) * dir;
+            const ray3f r = frame.generate(float(i) + 0.5f, float(j) + 0.5f, lu, lv);
+            const vec3 o = r.origin.to_double(), d = r.dir.to_double();
+            CHECK(std::fabs(dot(o - c.position, w)) < 1e-6);
+            CHECK((o - c.position).length() <= 0.25 * std::hypot(lu, lv) + 1e-6);
+            CHECK((o - c.position).length() == doctest::Approx(0.25 * std::hypot(lu, lv)).epsilon(1e-5));
+            CHECK(cross(p - o, d).length() < 1e-4 * (p - o).length());
+            CHECK(dot(p - o, d) > 0);
+        }
+    // A pinhole camera keeps the near plane's grid, no lens.
+    c.aperture = 0;
+    CHECK_FALSE(view_camera_frame(c).thin_lens);
+}
+
 } // namespace test_course_scene

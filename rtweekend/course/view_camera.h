@@ -48,8 +48,9 @@ struct view_camera {
 // The frame of a CENG795 course camera (above): the image plane at near_distance along
 // the gaze, spanning [left, right] x [bottom, top]; pixel (i, j), j = 0 the top row, centred at
 // e - d w + (l + (i + 0.5)(r - l)/nx) u + (t - (j + 0.5)(t - b)/ny) v, with w = -gaze,
-// u = unit(up x w), v = w x u (a left-handed camera then turns u round: u = unit(w x up)).
-// Throws scene_error for settings that make no image.
+// u = unit(up x w), v = w x u (a left-handed camera then turns u round: u = unit(w x up)). With
+// an aperture, a thin lens focused at focus_distance (below). Throws scene_error for settings
+// that make no image.
 inline camera_frame view_camera_frame(const view_camera& c) {
     auto finite = [](const vec3& a) { return std::isfinite(a.x()) && std::isfinite(a.y()) && std::isfinite(a.z()); };
     if (c.width <= 0 || c.height <= 0 || c.width > (1 << 16) || c.height > (1 << 16))
@@ -68,9 +69,22 @@ inline camera_frame view_camera_frame(const view_camera& c) {
     f.width = c.width;
     f.height = c.height;
     f.position = c.position;
-    f.pixel00 = vec3f(-c.near_distance * w + c.left * u + c.top * v + 0.5 * (du + dv));
-    f.pixel_delta_u = vec3f(du);
-    f.pixel_delta_v = vec3f(dv);
+    // A lens (aperture > 0): the same pixel grid moved out along the pinhole rays to the focal
+    // plane at focus_distance, where the renderer's thin lens makes its rays meet (the course's
+    // t_fd = focus / dot(dir, -w)); the lens a disk of diameter `aperture` about e in the u-v plane,
+    // which the course allows for its square (ceng795-later.md, 3.2).
+    double grid = 1;
+    if (c.aperture > 0) {
+        if (!std::isfinite(c.aperture) || !(c.focus_distance > 0) || !std::isfinite(c.focus_distance) || !(c.near_distance > 0))
+            throw scene_error("camera aperture must be finite, with a positive focus distance and near distance");
+        grid = c.focus_distance / c.near_distance;
+        f.thin_lens = true;
+        f.defocus_disk_u = vec3f(0.5 * c.aperture * u);
+        f.defocus_disk_v = vec3f(0.5 * c.aperture * v);
+    }
+    f.pixel00 = vec3f(grid * (-c.near_distance * w + c.left * u + c.top * v + 0.5 * (du + dv)));
+    f.pixel_delta_u = vec3f(grid * du);
+    f.pixel_delta_v = vec3f(grid * dv);
     return f;
 }
 
