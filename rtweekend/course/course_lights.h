@@ -36,6 +36,7 @@
 #include "../hittable.h"
 #include "../core/vec3f.h"
 #include "../image/image.h"
+#include "../render/environment_map.h"
 #include "../transform.h"
 #include "../vec3.h"
 
@@ -111,13 +112,8 @@ struct environment_light {
     std::string path; // the file it was read from, for messages
 
     vec3f radiance(const vec3f& d) const {
-        const double pi = 3.14159265358979323846;
-        const double u = (1 + std::atan2(double(d.x), -double(d.z)) / pi) / 2;
-        const double v = std::acos(std::clamp(double(d.y), -1.0, 1.0)) / pi;
-        const int w = map->width(), h = map->height();
-        // fmin and fmax before the conversion: a NaN direction gives the last texel, not undefined behaviour.
-        const int x = int(std::fmax(0.0, std::fmin(w - 1.0, std::floor(u * w))));
-        const int y = int(std::fmax(0.0, std::fmin(h - 1.0, std::floor(v * h))));
+        int x, y;
+        latlong_texel(d, map->width(), map->height(), x, y);
         return vec3f(map->pixel(x, y));
     }
 };

@@ -181,6 +181,19 @@ struct textured_object {
     vec3 offset{0, 0, 0};
 };
 
+// The course's (u, v) of a sphere's point P (relative to its centre, in its own frame) of radius
+// r: theta from +y, phi = atan2(z, x), u = (pi - phi) / (2 pi), v = theta / pi.
+struct course_sphere_coordinates {
+    double theta, phi, u, v;
+    course_sphere_coordinates(const vec3& P, double r) {
+        const double pi_d = 3.14159265358979323846;
+        theta = std::acos(std::clamp(P.y() / r, -1.0, 1.0));
+        phi = std::atan2(P.z(), P.x());
+        u = (pi_d - phi) / (2 * pi_d);
+        v = theta / pi_d;
+    }
+};
+
 // A textured object's diffuse reflectance at a point as its colour maps make it (replace_kd, then
 // blend_kd, in the file's order, from its material's kd), for a renderer that looks kd up as a
 // texture (render --integrator path; the Whitted integrator applies every map itself). (u, v) are
@@ -193,11 +206,9 @@ class course_kd_texture : public texture {
     color value(double u, double v, const point3& p) const override {
         const vec3 q = inverse_ * (p - object_.offset); // the object's own frame
         if (object_.shape == textured_object::shape_t::sphere) {
-            const double pi_d = 3.14159265358979323846;
-            const vec3 P = q - object_.center;
-            const double theta = std::acos(std::clamp(P.y() / object_.radius, -1.0, 1.0)), phi = std::atan2(P.z(), P.x());
-            u = (pi_d - phi) / (2 * pi_d);
-            v = theta / pi_d;
+            const course_sphere_coordinates c(q - object_.center, object_.radius);
+            u = c.u;
+            v = c.v;
         }
         color kd = object_.surface->diffuse;
         for (const texture_map& map : object_.maps) {

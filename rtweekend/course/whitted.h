@@ -600,9 +600,10 @@ RTWEEKEND_ENGINE_FUNCTION bool whitted_renderer::course_point_at(const textured_
     if (t.object.shape == textured_object::shape_t::sphere) {
         const vec3 P = s.p - t.object.center;
         const double r = t.object.radius;
-        const double theta = std::acos(std::clamp(P.y() / r, -1.0, 1.0)), phi = std::atan2(P.z(), P.x());
-        s.u = (pi - phi) / (2 * pi);
-        s.v = theta / pi;
+        const course_sphere_coordinates c(P, r);
+        const double theta = c.theta, phi = c.phi;
+        s.u = c.u;
+        s.v = c.v;
         s.T = t.object.linear * (2 * pi * vec3(P.z(), 0, -P.x()));
         s.B = t.object.linear * (pi * vec3(P.y() * std::cos(phi), -r * std::sin(theta), P.y() * std::sin(phi)));
         s.N = outward;

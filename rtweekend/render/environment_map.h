@@ -31,6 +31,17 @@
 
 namespace rt {
 
+// The texel (x, y) = (column, row) of a w x h lat-long picture that direction d looks up, in the
+// orientation above (also the course's environment lights', course/course_lights.h).
+inline void latlong_texel(const vec3f& d, int w, int h, int& x, int& y) {
+    const double u = (1 + std::atan2(double(d.x), -double(d.z)) / pi) / 2;
+    const double v = std::acos(std::clamp(double(d.y), -1.0, 1.0)) / pi;
+    // fmin and fmax before the conversion: a NaN direction gives the last texel, not undefined
+    // behaviour.
+    x = int(std::fmax(0.0, std::fmin(w - 1.0, std::floor(u * w))));
+    y = int(std::fmax(0.0, std::fmin(h - 1.0, std::floor(v * h))));
+}
+
 class environment_map {
   public:
     // The picture's texels times scale; throws scene_error on an empty picture, a scale that is
@@ -60,18 +71,9 @@ class environment_map {
     std::vector<float> probability_; // of each texel: the mass sample() gives it
     double total_ = 0;
 
-    // Texel coordinates of direction d: (x, y) as (column, row).
-    void texel_of(const vec3f& d, int& x, int& y) const {
-        const double u = (1 + std::atan2(double(d.x), -double(d.z)) / pi) / 2;
-        const double v = std::acos(std::clamp(double(d.y), -1.0, 1.0)) / pi;
-        // fmin and fmax before the conversion: a NaN direction gives the last texel, not
-        // undefined behaviour.
-        x = int(std::fmax(0.0, std::fmin(width_ - 1.0, std::floor(u * width_))));
-        y = int(std::fmax(0.0, std::fmin(height_ - 1.0, std::floor(v * height_))));
-    }
     size_t index_of(const vec3f& d) const {
         int x, y;
-        texel_of(d, x, y);
+        latlong_texel(d, width_, height_, x, y);
         return size_t(y) * size_t(width_) + size_t(x);
     }
     // The index i with cdf[i] <= u < cdf[i + 1] among n intervals, skipping empty ones.
