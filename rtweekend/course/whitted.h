@@ -58,6 +58,7 @@
 #include "../render/render_settings.h"
 #include "../render/scheduler.h"
 #include "../scene/surface_hit.h"
+#include "course_surface_map.h"
 #include "whitted_scene.h"
 
 #include <cstdint>
@@ -172,21 +173,6 @@ class whitted_renderer {
     };
     // Fills `out`; a course normal or bump map changes hit.shading_normal.
     void material_at(surface_hit& hit, hit_material& out) const;
-    // Where a hit is on a textured object (course_textures.h): its object-space point, (u, v), and
-    // the frame normal and bump maps work in, the object's for meshes (`object_frame`), the world's
-    // for spheres. False for a hit the object's shape cannot describe (then no map applies).
-    struct course_point {
-        vec3 p;             // object space
-        double u = 0, v = 0;
-        vec3 T, B, N;       // dP/du, dP/dv (not normalised), the unit outward normal
-        bool object_frame = true;
-    };
-    struct textured_f {
-        textured_object object;
-        mat3 inverse, normal_map; // M^-1, M^-T
-    };
-    bool course_point_at(const textured_f& t, const surface_hit& hit, course_point& s) const;
-    void apply_texture_maps(const textured_f& t, surface_hit& hit, hit_material& out) const;
     // The course's path tracer (homework 6): the radiance arriving along a camera ray.
     vec3f trace_path(const ray3f& r, const vec3f& background, pcg32& rng, uint64_t& rays,
                      const view_camera::path_tracing_t& pt, const whitted_settings& w) const;
@@ -228,7 +214,7 @@ class whitted_renderer {
     };
     std::vector<sphere_light_f> sphere_lights_;
     std::vector<environment_light> environments_; // course_lights.h
-    std::vector<textured_f> textured_;             // whitted_terms::textured indexes it
+    std::vector<course_surface_map> textured_;     // whitted_terms::textured indexes it
     std::optional<texture_map> background_map_;    // replace_background: the film's background
     // What a ray that leaves the scene in direction d sees of the environment lights: their sum
     // (0 without any).
@@ -413,32 +399,14 @@ RTWEEKEND_ENGINE_FUNCTION whitted_renderer::whitted_renderer(const whitted_scene
             throw scene_error("environment light has no image");
         environments_.push_back(e);
     }
-    auto check_map = [](const texture_map& map) {
-        if (map.pattern == texture_map::pattern_t::image && (!map.picture || map.picture->empty()))
-            throw scene_error("texture map has no image");
-        if (!(map.normalizer > 0) || !std::isfinite(map.normalizer) || !std::isfinite(map.bump_factor) ||
-            !std::isfinite(map.noise_scale) || !std::isfinite(map.scale) || !std::isfinite(map.offset))
-            throw scene_error("texture map numbers must be finite, with a positive normalizer");
-    };
     for (const textured_object& o : scene.textured_objects) {
-        if (!o.surface) throw scene_error("textured object has no material");
-        for (const texture_map& map : o.maps) check_map(map);
-        const double det = o.linear.determinant();
-        if (!(std::fabs(det) > 0) || !std::isfinite(det) || !finite3(o.offset))
-            throw scene_error("textured object must be placed by an invertible finite map");
-        if (o.shape == textured_object::shape_t::sphere && (!(o.radius > 0) || !std::isfinite(o.radius) || !finite3(o.center)))
-            throw scene_error("textured sphere must have a positive finite radius");
-        textured_f t;
-        t.object = o;
-        t.inverse = o.linear.inverse();
-        t.normal_map = t.inverse.transpose();
         const auto index = int32_t(textured_.size());
-        textured_.push_back(std::move(t));
+        textured_.emplace_back(o); // checks the maps and the placement
         for (size_t k = 0; k < compiled->materials.size(); ++k)
             if (compiled->materials[k].source == o.surface.get()) terms_[k].textured = index;
     }
     if (scene.background_texture) {
-        check_map(*scene.background_texture);
+        check_texture_map(*scene.background_texture);
         background_map_ = scene.background_texture;
     }
     // Back faces the culled walk skips (whitted_settings::cull_back_faces asks for it per render).
@@ -575,145 +543,14 @@ RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::material_at(surface_hit& hit, h
     if (stored.texture != no_texture) out.looked_up = textured(*compiled_, stored, hit);
     out.m = out.looked_up ? &*out.looked_up : &stored;
     out.terms = hit.user_shape ? &*out.reported_terms : &terms_[hit.material];
-    if (out.terms->textured >= 0) apply_texture_maps(textured_[size_t(out.terms->textured)], hit, out);
-}
-
-RTWEEKEND_ENGINE_FUNCTION bool whitted_renderer::course_point_at(const textured_f& t, const surface_hit& hit,
-                                                                  course_point& s) const {
-    const compiled_scene& scene = *compiled_;
-    const compiled_scene* holder = &scene; // the scene or object whose sets hold the shape hit
-    shape_kind kind = hit.kind;
-    uint32_t index = hit.index;
-    const bool in_instance = hit.kind == shape_id<instance_set>;
-    if (in_instance) {
-        // Traced in the object's own frame: its point and triangle are there already.
-        const instance_set& instances = scene.set<instance_set>();
-        holder = scene.objects[instances.object[hit.index]].get();
-        kind = hit.object_kind;
-        index = hit.object_index;
-        s.p = instances.to_object[hit.index].point(hit.p - instances.shift(hit.index, hit.time)).to_double();
-    } else {
-        // Flattened into the scene's frame: carried back by the object's own map.
-        s.p = t.inverse * (scene.origin + hit.p.to_double() - t.object.offset);
-    }
-    const vec3 outward = hit.front_face ? hit.normal.to_double() : -hit.normal.to_double();
-    if (t.object.shape == textured_object::shape_t::sphere) {
-        const vec3 P = s.p - t.object.center;
-        const double r = t.object.radius;
-        const course_sphere_coordinates c(P, r);
-        const double theta = c.theta, phi = c.phi;
-        s.u = c.u;
-        s.v = c.v;
-        s.T = t.object.linear * (2 * pi * vec3(P.z(), 0, -P.x()));
-        s.B = t.object.linear * (pi * vec3(P.y() * std::cos(phi), -r * std::sin(theta), P.y() * std::sin(phi)));
-        s.N = outward;
-        s.object_frame = false;
-        return true;
-    }
-    if (kind != shape_id<triangle_set>) return false;
-    const triangle_set& ts = holder->set<triangle_set>();
-    vec3 c[3];
-    double uv[3][2] = {{0, 0}, {0, 0}, {0, 0}};
-    for (size_t k = 0; k < 3; ++k) {
-        c[k] = vec3(ts.vertex[3 * k][index], ts.vertex[3 * k + 1][index], ts.vertex[3 * k + 2][index]);
-        if (!in_instance) c[k] = t.inverse * (scene.origin + c[k] - t.object.offset);
-        if (!ts.uv[0].empty())
-            for (size_t a = 0; a < 2; ++a) uv[k][a] = ts.uv[2 * k + a][index];
-    }
-    // Barycentric coordinates of p by least squares in the triangle's plane (as triangle_set's).
-    const vec3 e1 = c[1] - c[0], e2 = c[2] - c[0], d = s.p - c[0];
-    const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(d, e1), d21 = dot(d, e2);
-    const double det = d00 * d11 - d01 * d01;
-    if (!(det > 0)) return false;
-    const double b1 = (d11 * d20 - d01 * d21) / det, b2 = (d00 * d21 - d01 * d20) / det, b0 = 1 - b1 - b2;
-    s.u = b0 * uv[0][0] + b1 * uv[1][0] + b2 * uv[2][0];
-    s.v = b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1];
-    // dP/du and dP/dv from the uv differences along the edges (the course's formula).
-    const double du1 = uv[1][0] - uv[0][0], dv1 = uv[1][1] - uv[0][1];
-    const double du2 = uv[2][0] - uv[0][0], dv2 = uv[2][1] - uv[0][1];
-    const double uv_det = du1 * dv2 - du2 * dv1;
-    s.N = unit_vector(cross(e1, e2)); // the course's winding: (b - a) x (c - a)
-    if (uv_det != 0 && std::isfinite(uv_det)) {
-        s.T = (dv2 * e1 - dv1 * e2) / uv_det;
-        s.B = (du1 * e2 - du2 * e1) / uv_det;
-    } else { // no coordinates to differentiate: any frame of the plane
-        s.T = unit_vector(e1);
-        s.B = cross(s.N, s.T);
-    }
-    s.object_frame = true;
-    return true;
-}
-
-RTWEEKEND_ENGINE_FUNCTION void whitted_renderer::apply_texture_maps(const textured_f& t, surface_hit& hit,
-                                                                     hit_material& out) const {
-    course_point s;
-    if (!course_point_at(t, hit, s)) return;
-    whitted_material mapped = *t.object.surface;
-    bool recoloured = false;
-    vec3 normal(0, 0, 0); // the new shading normal, in the point's frame; zero: unchanged
-    bool normal_in_object_frame = s.object_frame;
-    for (const texture_map& map : t.object.maps) {
-        using decal = texture_map::decal_t;
-        switch (map.decal) {
-        case decal::replace_kd: mapped.diffuse = map.colour(s.u, s.v, s.p).to_double(); recoloured = true; break;
-        case decal::blend_kd:
-            mapped.diffuse = (mapped.diffuse + map.colour(s.u, s.v, s.p).to_double()) / 2;
-            recoloured = true;
-            break;
-        case decal::replace_ks: mapped.specular = map.colour(s.u, s.v, s.p).to_double(); recoloured = true; break;
-        case decal::replace_all:
-            out.replaced = true;
-            out.replaced_shading = map.colour(s.u, s.v, s.p);
-            break;
-        case decal::replace_normal: {
-            if (map.pattern != texture_map::pattern_t::image) break;
-            // n_t = 2 c / 255 - 1 of the interpolated texel, in the frame (T^, B^, N).
-            const vec3f c = map.lookup(s.u, s.v);
-            const vec3 nt(2 * c.x / 255.0 - 1, 2 * c.y / 255.0 - 1, 2 * c.z / 255.0 - 1);
-            normal = nt.x() * unit_vector(s.T) + nt.y() * unit_vector(s.B) + nt.z() * s.N;
-            normal_in_object_frame = s.object_frame;
-            break;
-        }
-        case decal::bump_normal: {
-            if (map.pattern == texture_map::pattern_t::perlin) {
-                // The converted noise times BumpFactor as a height over the object's space: its
-                // gradient g by central differences, n' = n - (g - (g . n) n).
-                const vec3 n = s.object_frame ? s.N : unit_vector(s.p - t.object.center);
-                auto h = [&](const vec3& x) { return map.bump_factor * map.noise_value(x); };
-                const double e = 1e-3;
-                const vec3 g((h(s.p + vec3(e, 0, 0)) - h(s.p - vec3(e, 0, 0))) / (2 * e),
-                             (h(s.p + vec3(0, e, 0)) - h(s.p - vec3(0, e, 0))) / (2 * e),
-                             (h(s.p + vec3(0, 0, e)) - h(s.p - vec3(0, 0, e))) / (2 * e));
-                normal = n - (g - dot(g, n) * n);
-                normal_in_object_frame = true;
-                break;
-            }
-            if (map.pattern != texture_map::pattern_t::image) break;
-            // Forward differences of one texel of the nearest heights; the surface displaced by
-            // k h N: n' = (B + k h_v N) x (T + k h_u N), turned to N's side.
-            const double W = map.picture->width(), H = map.picture->height();
-            const double h0 = map.height(s.u, s.v);
-            const double hu = map.height(s.u + 1 / W, s.v) - h0, hv = map.height(s.u, s.v + 1 / H) - h0;
-            const double k = map.bump_factor;
-            normal = cross(s.B + k * hv * s.N, s.T + k * hu * s.N);
-            if (dot(normal, s.N) < 0) normal = -normal;
-            normal_in_object_frame = s.object_frame;
-            break;
-        }
-        case decal::replace_background: break; // the film's, not the object's (render())
-        }
-    }
-    if (normal.length_squared() > 0 && finite3(normal)) {
-        vec3 world = normal_in_object_frame ? t.normal_map * normal : normal;
-        const double len = world.length();
-        if (len > 0 && std::isfinite(len)) {
-            vec3f n(world / len);
-            if (dot(n, hit.normal) < 0) n = -n; // on the side the ray came from, as the geometric normal
-            hit.shading_normal = n;
-        }
-    }
-    if (!recoloured) return;
-    out.mapped = mapped;
+    if (out.terms->textured < 0) return;
+    // A course texture map's change (course_surface_map.h).
+    course_surface_map::surface mapped = textured_[size_t(out.terms->textured)].at(*compiled_, hit);
+    if (mapped.normal.x != 0 || mapped.normal.y != 0 || mapped.normal.z != 0) hit.shading_normal = mapped.normal;
+    out.replaced = mapped.replaced;
+    out.replaced_shading = mapped.replaced_shading;
+    if (!mapped.mapped) return;
+    out.mapped = std::move(mapped.mapped);
     out.looked_up = out.mapped->compiled(false);
     out.mapped_terms = whitted_terms::of(*out.looked_up);
     out.m = &*out.looked_up;

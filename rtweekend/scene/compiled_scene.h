@@ -28,6 +28,7 @@
 #include "light_set.h"
 #include "shape_kinds.h"
 #include "surface_hit.h"
+#include "surface_map.h"
 #include "texture_table.h"
 #include "../core/vec3f.h"
 
@@ -65,6 +66,12 @@ class compiled_scene {
         float metallic = 0, roughness = 0;
     };
     std::vector<metallic_roughness_map> metallic_roughness_maps;
+    // Front ends' maps (surface_map.h), by material index: a null entry leaves its material as it
+    // is. Empty when no material has one.
+    std::vector<std::shared_ptr<const surface_map>> surface_maps;
+    const surface_map* surface_map_of(uint32_t material) const {
+        return material < surface_maps.size() ? surface_maps[material].get() : nullptr;
+    }
     // The set of shapes of kind K (shape_kinds.h), in the BVH's leaf order.
     template <class K>
     K& set() { return std::get<K>(sets_); }
