@@ -241,33 +241,16 @@ inline rt::compiled_scene xml_path_compiled(const rt::whitted_scene& scene) {
         rt::course_frame(l.normal / len, u, v);
         rt::add_hidden_square_light(compiled, l.position, l.size * u, l.size * v, l.radiance * rt::pi);
     }
-    // Colour maps (check_xml_path_scene refuses the others): the object's material, plain, looks
-    // its kd up at each hit in the course's way (course_kd_texture), as a Lambertian albedo or
-    // blinn_phong's diffuse lobe. A mesh's normal map (the last, as the course applies them in order) goes beside its material
-    // in the normal-map table: the texel's 2 c - 1 in the frame of dp/du, dp/dv and the normal,
-    // the course's frame on a mesh.
+    // Texture maps: each textured object's material (its own copy) gets the object's maps as a
+    // surface map (course_surface_map.h), which the path tracer asks at each hit: colour maps on
+    // any course material, normal and bump maps in the course's frames, replace_all.
     for (const rt::textured_object& o : scene.textured_objects) {
-        using decal = rt::texture_map::decal_t;
-        const bool colours = std::any_of(o.maps.begin(), o.maps.end(), [](const rt::texture_map& m) {
-            return m.decal == decal::replace_kd || m.decal == decal::blend_kd;
-        });
-        if (colours) {
-            auto kd = std::make_shared<const rt::course_kd_texture>(o);
-            const uint32_t index = compiled.textures.add(*kd);
-            compiled.owned_textures.push_back(kd);
-            for (rt::compiled_material& m : compiled.materials)
-                if (m.source == o.surface.get() && m.takes_colour()) m.texture = index;
-        }
-        const rt::texture_map* normals = nullptr;
-        for (const rt::texture_map& m : o.maps)
-            if (m.decal == decal::replace_normal && m.pattern == rt::texture_map::pattern_t::image) normals = &m;
-        if (!normals) continue;
-        auto n = std::make_shared<const rt::course_normal_texture>(*normals);
-        const uint32_t index = compiled.textures.add(*n);
-        compiled.owned_textures.push_back(n);
-        compiled.normal_maps.resize(compiled.materials.size());
+        auto map = std::make_shared<const rt::course_surface_map>(o);
         for (size_t k = 0; k < compiled.materials.size(); ++k)
-            if (compiled.materials[k].source == o.surface.get()) compiled.normal_maps[k] = {index, 1.0f, false};
+            if (compiled.materials[k].source == o.surface.get()) {
+                compiled.surface_maps.resize(compiled.materials.size());
+                compiled.surface_maps[k] = map;
+            }
     }
     return compiled;
 }
@@ -343,46 +326,31 @@ inline void exit_if_interrupted_before(size_t camera, size_t cameras) {
     std::exit(130);
 }
 
-// What the path tracer does not take from a course scene yet, refused before rendering (an image
-// without it would be wrong): texture maps other than kd's on plain materials, a background
-// image, and more than one environment light. Point, directional, spot, area, object
-// and environment lights carry over (xml_path_compiled, xml_path_environment).
+// What the path tracer does not take from a course scene, refused before rendering (an image
+// without it would be wrong): more than one environment light. Everything else carries over:
+// point, directional, spot, area, object and environment lights (xml_path_compiled,
+// xml_path_environment), texture maps and the background image.
 inline void check_xml_path_scene(const std::string& path, const rt::whitted_scene& scene) {
     if (scene.environment_lights.size() > 1)
         throw rt::scene_error(path + ": --integrator path takes one environment light; this scene has " +
                               std::to_string(scene.environment_lights.size()) + ": render it in Whitted mode (without --integrator)");
-    // Texture maps: those that colour kd (replace_kd, blend_kd) on plain materials, and a mesh's
-    // normal map (replace_normal; the course ignores one that is not an image); not yet the
-    // others, nor a background image.
-    auto refuse = [&](const std::string& what) {
-        throw rt::scene_error(path + ": --integrator path does not take " + what +
-                              " yet: render this scene in Whitted mode (without --integrator)");
-    };
-    if (scene.background_texture) refuse("the course's background texture (replace_background)");
-    for (const rt::textured_object& o : scene.textured_objects) {
-        using decal = rt::texture_map::decal_t;
-        for (const rt::texture_map& m : o.maps) {
-            if (m.decal == decal::replace_normal && m.pattern == rt::texture_map::pattern_t::image &&
-                o.shape != rt::textured_object::shape_t::mesh)
-                refuse("the course's normal maps on spheres");
-            if (m.decal != decal::replace_kd && m.decal != decal::blend_kd && m.decal != decal::replace_normal)
-                refuse(std::string("the course's texture maps of decal mode ") +
-                       (m.decal == decal::replace_ks ? "replace_ks" : m.decal == decal::replace_all ? "replace_all"
-                        : m.decal == decal::replace_normal ? "replace_normal" : m.decal == decal::bump_normal ? "bump_normal"
-                        : "replace_background"));
-        }
-        const bool colours = std::any_of(o.maps.begin(), o.maps.end(), [](const rt::texture_map& m) {
-            return m.decal == decal::replace_kd || m.decal == decal::blend_kd;
-        });
-        if (colours && o.surface && (o.surface->kind != rt::whitted_material::kind_t::plain || o.surface->brdf))
-            refuse("kd texture maps on a mirror, conductor, dielectric or BRDF material");
-    }
+    if (scene.background_texture) rt::check_texture_map(*scene.background_texture);
 }
 
-// What the path tracer's rays that leave a course scene see: its environment light, radiance
-// times pi as for every course light, seen by every ray and light-sampled (environment_map.h: the
-// course's orientation and nearest texels); else the background, seen by camera rays alone.
-inline rt::environment xml_path_environment(const rt::whitted_scene& scene) {
+// What the path tracer's rays that leave a course scene see through `camera`: its environment
+// light, radiance times pi as for every course light, seen by every ray and light-sampled
+// (environment_map.h: the course's orientation and nearest texels); else the background, seen by
+// camera rays alone: its image (replace_background, pixel (x, y) reading (x / nx, y / ny) as the
+// Whitted integrator does) or its colour.
+inline rt::environment xml_path_environment(const rt::whitted_scene& scene, const rt::view_camera& camera) {
+    if (scene.environment_lights.empty() && scene.background_texture) {
+        const rt::texture_map& map = *scene.background_texture;
+        auto film = std::make_shared<rt::image>(camera.width, camera.height);
+        for (int y = 0; y < camera.height; ++y)
+            for (int x = 0; x < camera.width; ++x)
+                film->set_pixel(x, y, map.lookup(double(x) / camera.width, double(y) / camera.height).to_double());
+        return rt::environment::film_backdrop(std::move(film));
+    }
     if (scene.environment_lights.empty()) return rt::environment::backdrop(rt::vec3f(scene.background));
     const rt::environment_light& e = scene.environment_lights[0];
     if (!e.map) throw rt::scene_error("environment light has no image");
@@ -400,7 +368,6 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     rt::render_settings settings = xml_path_settings(opt);
     catch_interrupts(); // Ctrl-C: the current camera's image so far, then exit 130
     settings.stop = &interrupt_requested;
-    const rt::environment env = xml_path_environment(scene);
     // One compiled scene for every camera, around the first (as the Whitted integrator's).
     const rt::compiled_scene compiled = xml_path_compiled(scene);
     const size_t cameras = scene.cameras.size();
@@ -409,7 +376,7 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
         rt::camera_frame frame = rt::view_camera_frame(scene.cameras[i]);
         if (opt.filter) frame.filter = *opt.filter;
         settings.samples_per_pixel = xml_path_samples(opt, scene.cameras[i]);
-        rt::render_result r = rt::path_trace(compiled, frame, env, settings);
+        rt::render_result r = rt::path_trace(compiled, frame, xml_path_environment(scene, scene.cameras[i]), settings);
         const std::string also = rt::write_course_image(outputs[i], r.img, scene.cameras[i]);
         if (r.stats.interrupted) {
             std::fprintf(stderr,

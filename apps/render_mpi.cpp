@@ -118,7 +118,6 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
             return 0;
         });
         rt::render_settings settings = app::xml_path_settings(opt);
-        const rt::environment env = rt::mpi::together(comm, [&] { return app::xml_path_environment(scene); });
         // One compiled scene for every camera, around the first, as render compiles it (every
         // rank compiles it; a failure anywhere is agreed on).
         const rt::compiled_scene compiled = rt::mpi::together(comm, [&] { return app::xml_path_compiled(scene); });
@@ -126,6 +125,7 @@ void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
             rt::camera_frame frame = rt::view_camera_frame(c);
             if (opt.filter) frame.filter = *opt.filter;
             settings.samples_per_pixel = app::xml_path_samples(opt, c);
+            const rt::environment env = rt::mpi::together(comm, [&] { return app::xml_path_environment(scene, c); });
             rt::render_result r = rt::mpi::path_trace(comm, compiled, frame, env, settings);
             images.push_back(std::move(r.img));
         }

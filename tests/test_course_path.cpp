@@ -21,6 +21,8 @@
 #include "test_helpers.h"
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -103,9 +105,18 @@ pixel_mean ours_direct_mean(const whitted_scene& scene, int samples, int max_dep
     settings.samples_per_pixel = samples;
     settings.max_depth = max_depth;
     settings.quiet = true;
-    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), app::xml_path_environment(scene), settings).img);
+    return mean_of(path_trace(compiled, view_camera_frame(scene.cameras[0]), app::xml_path_environment(scene, scene.cameras[0]),
+                              settings).img);
 }
 double ours_direct(const whitted_scene& scene) { return ours_direct_mean(scene, 4).mean; }
+
+// t.ppm, a 4 x 2 picture whose texel (x, y) is (10 (x + 1) + 100 y, 70, 200).
+void write_rows_picture(test::scratch_dir& dir) {
+    std::string ppm = "P3\n4 2\n255\n";
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) ppm += std::to_string(10 * (x + 1) + 100 * y) + " 70 200\n";
+    dir.write("t.ppm", ppm);
+}
 
 // The view factor from a point to a w x h rectangle in a parallel plane at distance c, the point
 // below one corner (Howell's catalogue of configuration factors, B-3; the form given by Hamilton
@@ -461,16 +472,14 @@ TEST_CASE("course path tracer: an environment light in ours, a floor pi kd L as 
                             {"s.xml", "--integrator path takes one environment light; this scene has 2"});
 }
 
-TEST_CASE("course path tracer: kd texture maps in ours, the same direct light as the course's") {
-    // The course's colour maps (replace_kd, blend_kd) looked up in ours at each hit
-    // (course_kd_texture): at points of a textured square (an image, nearest) and of a sphere (a
-    // checkerboard in its object space, blended with kd), a point light's direct light is the
-    // Whitted integrator's, kd I cos / d^2. Both see one point: a near plane of 1e-4.
+TEST_CASE("course path tracer: texture maps in ours, the same direct light as the course's") {
+    // The course's texture maps looked up in ours at each hit (render's xml_path_compiled: a
+    // course_surface_map per textured object): at points of a textured square and of a sphere, a
+    // point light's direct light is the Whitted integrator's, kd I cos / d^2 with the maps' kd and
+    // normal. Both see one point: a near plane of 1e-4. First the colour maps: an image (nearest)
+    // on the square, a checkerboard in the sphere's object space, blended with kd.
     test::scratch_dir dir("course_path_textures");
-    std::string ppm = "P3\n4 2\n255\n";
-    for (int y = 0; y < 2; ++y)
-        for (int x = 0; x < 4; ++x) ppm += std::to_string(10 * (x + 1) + 100 * y) + " 70 200\n";
-    dir.write("t.ppm", ppm);
+    write_rows_picture(dir);
     auto scene_at = [&](const std::string& from, const std::string& gaze, const std::string& ks, const std::string& maps,
                         const std::string& objects) {
         return load_xml_scene(dir.write(
@@ -538,16 +547,113 @@ TEST_CASE("course path tracer: kd texture maps in ours, the same direct light as
             CHECK(course > 0.01);
             CHECK(ours_direct(scene) == doctest::Approx(course).epsilon(1e-4));
         }
-    // The decals ours does not take yet, and normal maps on spheres: one line each.
-    test::check_scene_error([&] { app::check_xml_path_scene("s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", normal_map, ball)); },
-                            {"s.xml", "normal maps on spheres"});
-    for (const char* decal : {"replace_ks", "replace_all", "bump_normal"}) {
-        CAPTURE(decal);
-        std::string other = image_map;
-        other.replace(other.find("replace_kd"), 10, decal);
-        test::check_scene_error([&] { app::check_xml_path_scene("s.xml", scene_at("0 0 3", "0 0 -1", "0 0 0", other, square)); },
-                                {"s.xml", std::string("texture maps of decal mode ") + decal});
+    // Every other decal, through the surface map the path tracer asks at each hit
+    // (course_surface_map.h): a normal map on the sphere (in its world-space frame), bump maps
+    // from the image (on the square) and from Perlin noise (on the sphere): the course's light.
+    const std::string bump_image = "<TextureMap id=\"1\" type=\"image\"><ImageId>1</ImageId><DecalMode>bump_normal</DecalMode>"
+                                   "<BumpFactor>0.02</BumpFactor></TextureMap>";
+    const std::string bump_noise = "<TextureMap id=\"1\" type=\"perlin\"><DecalMode>bump_normal</DecalMode>"
+                                   "<NoiseScale>3</NoiseScale><BumpFactor>0.3</BumpFactor></TextureMap>";
+    // (Points near the light's foot: where a tilted normal sees the light's mirror image through
+    // the surface too, ours adds it, as its fold of smooth normals does, vertex_material.h, and
+    // the course's does not.)
+    for (const probe& p : {probe{"0.2 0.3 3", "0 0 -1", normal_map, ball}, probe{"0.35 0.1 3", "0 0 -1", normal_map, ball},
+                           probe{"-0.6 0.7 3", "0 0 -1", bump_image, square}, probe{"0.1 0.6 3", "0 0 -1", bump_image, square},
+                           probe{"0.2 0.3 3", "0 0 -1", bump_noise, ball}, probe{"-0.4 0.1 3", "0 0 -1", bump_noise, ball}}) {
+        CAPTURE(p.from);
+        CAPTURE(p.maps);
+        const whitted_scene scene = scene_at(p.from, p.gaze, "0 0 0", p.maps, p.objects);
+        REQUIRE(scene.warnings.empty());
+        app::check_xml_path_scene("s.xml", scene);
+        const double course = mean_of(render_whitted(scene, 0).img).mean;
+        CHECK(course > 0.01);
+        CHECK(ours_direct(scene) == doctest::Approx(course).epsilon(1e-4));
+        // The map matters: without it the light differs.
+        std::string bare = p.objects;
+        bare.erase(bare.find("<Textures>1</Textures>"), 22);
+        CHECK(ours_direct(scene_at(p.from, p.gaze, "0 0 0", "", bare)) != doctest::Approx(course).epsilon(1e-3));
     }
+    // replace_ks: at (0.8, -0.3) the square's texel is (140, 70, 200), so ks = texel / 255 there:
+    // the light of the same material with that ks and no map, which differs from ks = 0's.
+    std::string plain_square = square;
+    plain_square.erase(plain_square.find("<Textures>1</Textures>"), 22);
+    std::string ks_map = image_map;
+    ks_map.replace(ks_map.find("replace_kd"), 10, "replace_ks");
+    const double ks_mapped = ours_direct(scene_at("0.8 -0.3 3", "0 0 -1", "0 0 0", ks_map, square));
+    const double ks_given = ours_direct(scene_at("0.8 -0.3 3", "0 0 -1", "0.5490196 0.2745098 0.7843137", "", plain_square));
+    CHECK(ks_mapped == doctest::Approx(ks_given).epsilon(1e-4));
+    CHECK(ks_mapped > 1.001 * ours_direct(scene_at("0.8 -0.3 3", "0 0 -1", "0 0 0", "", plain_square)));
+    // replace_all: the surface shows texel / 255 (red 140 there), unlit, in both renderers.
+    std::string all_map = image_map;
+    all_map.replace(all_map.find("replace_kd"), 10, "replace_all");
+    const whitted_scene shown = scene_at("0.8 -0.3 3", "0 0 -1", "0.2 0.2 0.2", all_map, square);
+    CHECK(ours_direct(shown) == doctest::Approx(140.0 / 255).epsilon(1e-6));
+    CHECK(mean_of(render_whitted(shown, 0).img).mean == doctest::Approx(140.0 / 255).epsilon(1e-6));
+    // kd maps on a mirror (its diffuse base) and on a BRDF material (its kd): the course's light.
+    for (const char* material : {"<MirrorReflectance>0.5 0.5 0.5</MirrorReflectance>", "BRDF"}) {
+        CAPTURE(material);
+        for (const char* from : {"-0.6 0.7 3", "0.8 -0.3 3"}) {
+            // (A mirror's Blinn-Phong highlight is the course's alone: ks 0 there.)
+            const bool brdf = std::string(material) == "BRDF";
+            scene_at(from, "0 0 -1", brdf ? "0.3 0.3 0.3" : "0 0 0", image_map, square); // writes s.xml
+            const whitted_scene scene = [&] {
+                std::ifstream in(dir.path / "s.xml");
+                std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+                if (brdf) {
+                    text.replace(text.find("<Material id=\"1\">"), 17, "<Material id=\"1\" BRDF=\"1\">");
+                    text.replace(text.find("<Materials>"), 0,
+                                 "<BRDFs><ModifiedBlinnPhong id=\"1\" normalized=\"true\"><Exponent>10</Exponent></ModifiedBlinnPhong></BRDFs>");
+                } else {
+                    text.replace(text.find("</Material>"), 0, material);
+                    text.replace(text.find("<Material id=\"1\">"), 17, "<Material id=\"1\" type=\"mirror\">");
+                }
+                return load_xml_scene(dir.write("s.xml", text));
+            }();
+            INFO((scene.warnings.empty() ? std::string() : scene.warnings[0]));
+            REQUIRE(scene.warnings.empty());
+            REQUIRE(scene.textured_objects.size() == 1);
+            const double course = mean_of(render_whitted(scene, 0).img).mean;
+            CHECK(course > 0.01);
+            CHECK(ours_direct(scene) == doctest::Approx(course).epsilon(1e-4));
+        }
+    }
+}
+
+TEST_CASE("course path tracer: a background image, pixel (x, y) reading (x / nx, y / ny), as in the course's") {
+    // A 4 x 2 picture behind a film of 8 x 4 with nothing in view: pixel (x, y) shows texel
+    // (floor(x / 2), floor(y / 2)) by nearest lookup, as it is (0-255 units), in ours and in the
+    // Whitted integrator; the rays that leave after a bounce see black.
+    test::scratch_dir dir("course_path_background");
+    write_rows_picture(dir);
+    const whitted_scene scene = load_xml_scene(dir.write(
+        "s.xml", "<Scene><BackgroundColor>5 5 5</BackgroundColor><Cameras><Camera id=\"1\"><Position>0 0 0</Position><Gaze>0 0 -1</Gaze>"
+                 "<Up>0 1 0</Up><NearPlane>-1 1 -0.5 0.5</NearPlane><NearDistance>1</NearDistance><ImageResolution>8 4</ImageResolution>"
+                 "<ImageName>x.png</ImageName></Camera></Cameras><Materials><Material id=\"1\"><DiffuseReflectance>1 1 1</DiffuseReflectance>"
+                 "</Material></Materials><Textures><Images><Image id=\"1\">t.ppm</Image></Images><TextureMap id=\"1\" type=\"image\">"
+                 "<ImageId>1</ImageId><DecalMode>replace_background</DecalMode></TextureMap></Textures><VertexData>0 0 10</VertexData>"
+                 "<Objects><Sphere id=\"1\"><Material>1</Material><Center>1</Center><Radius>1</Radius></Sphere></Objects></Scene>"));
+    REQUIRE(scene.warnings.empty());
+    REQUIRE(scene.background_texture);
+    app::check_xml_path_scene("s.xml", scene);
+    render_settings settings;
+    settings.samples_per_pixel = 4;
+    settings.quiet = true;
+    const image ours = path_trace(app::xml_path_compiled(scene), view_camera_frame(scene.cameras[0]),
+                                  app::xml_path_environment(scene, scene.cameras[0]), settings).img;
+    const image course = render_whitted(scene, 0).img;
+    REQUIRE(ours.width() == 8);
+    REQUIRE(ours.height() == 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) {
+            CAPTURE(x);
+            CAPTURE(y);
+            const color expected(10 * (x / 2 + 1) + 100 * (y / 2), 70, 200);
+            for (const image* img : {&ours, &course}) {
+                CHECK(img->pixel(x, y).x() == doctest::Approx(expected.x()).epsilon(1e-6));
+                CHECK(img->pixel(x, y).y() == doctest::Approx(expected.y()).epsilon(1e-6));
+                CHECK(img->pixel(x, y).z() == doctest::Approx(expected.z()).epsilon(1e-6));
+            }
+        }
 }
 
 } // namespace test_course_path

@@ -27,7 +27,7 @@
 //                       `linear` conversion (n + 1) / 2, `absval` |n|.
 //   bump height         the mean of R, G, B of the nearest texel in the file's units, whatever
 //                       Interpolation and Normalizer say.
-// How the renderer uses them (course/whitted.h): the colour decals change a copy of the object's
+// How the renderers use them (course/course_surface_map.h): the colour decals change a copy of the object's
 // material; normal and bump maps change the shading normal, in the object's frame for meshes and
 // in the world's for spheres (the frames the instructor's images were matched in).
 
@@ -194,53 +194,9 @@ struct course_sphere_coordinates {
     }
 };
 
-// A textured object's diffuse reflectance at a point as its colour maps make it (replace_kd, then
-// blend_kd, in the file's order, from its material's kd), for a renderer that looks kd up as a
-// texture (render --integrator path; the Whitted integrator applies every map itself). (u, v) are
-// a mesh's texture coordinates at the point; a sphere's are worked out from p as the course does.
-// Other decals leave kd as it is.
-class course_kd_texture : public texture {
-  public:
-    explicit course_kd_texture(textured_object object) : object_(std::move(object)), inverse_(object_.linear.inverse()) {}
-
-    color value(double u, double v, const point3& p) const override {
-        const vec3 q = inverse_ * (p - object_.offset); // the object's own frame
-        if (object_.shape == textured_object::shape_t::sphere) {
-            const course_sphere_coordinates c(q - object_.center, object_.radius);
-            u = c.u;
-            v = c.v;
-        }
-        color kd = object_.surface->diffuse;
-        for (const texture_map& map : object_.maps) {
-            if (map.decal == texture_map::decal_t::replace_kd) kd = map.colour(u, v, q).to_double();
-            else if (map.decal == texture_map::decal_t::blend_kd) kd = (kd + map.colour(u, v, q).to_double()) / 2;
-        }
-        return kd;
-    }
-
-  private:
-    textured_object object_;
-    mat3 inverse_;
-};
-
-// A mesh's normal map (replace_normal, an image) as a texture of colours in [0, 1]: the texel at
-// the mesh's (u, v), interpolated as the map says, over 255, so that 2 c - 1 is the course's
-// tangent-space normal, for a renderer that bends normals with such textures (render
-// --integrator path; compiled_scene::normal_maps).
-class course_normal_texture : public texture {
-  public:
-    explicit course_normal_texture(texture_map map) : map_(std::move(map)) {}
-    color value(double u, double v, const point3&) const override { return (map_.lookup(u, v) / 255.0f).to_double(); }
-
-  private:
-    texture_map map_;
-};
-
 } // namespace rt
 
 #ifndef RTWEEKEND_NO_GLOBAL_NAMES
-using rt::course_kd_texture;
-using rt::course_normal_texture;
 using rt::course_perlin;
 using rt::texture_map;
 using rt::textured_object;

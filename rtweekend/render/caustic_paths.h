@@ -79,9 +79,10 @@
 namespace rt {
 
 // Whether light tracing has caustics to find in `scene`: an untextured light, and a material with
-// a delta lobe, and no user-written code (which light paths cannot follow).
+// a delta lobe, and no user-written code or front end's surface maps (which light paths do not
+// follow).
 inline bool traces_caustics(const compiled_scene& scene) {
-    if (scene.calls_user_code()) return false;
+    if (scene.calls_user_code() || !scene.surface_maps.empty()) return false;
     bool light = false;
     for (const auto& l : scene.lights.lights) light = light || l.texture == UINT32_MAX;
     if (!light) return false;

@@ -95,7 +95,13 @@ inline guide_sample trace_guide(const compiled_scene& scene, const environment& 
         }
         compiled_material m = hit.user_shape ? compile_reported_material(hit.user_record) : scene.materials[hit.material];
         if (m.texture != no_texture) m = textured(scene, m, hit);
-        const vec3f shading_normal = shading_normal_at(scene, hit); // with its normal map, if any
+        vec3f shading_normal = shading_normal_at(scene, hit); // with its normal map, if any
+        if (const surface_map* map = hit.user_shape ? nullptr : scene.surface_map_of(hit.material)) {
+            surface_change change{m, shading_normal}; // a front end's map (surface_map.h)
+            map->apply(scene, hit, change);
+            m = change.material;
+            shading_normal = change.shading_normal;
+        }
         const shading_point sp{shading_normal, hit.front_face};
         const vec3f wo = -r.dir;
         if (m.emits() || !m.scatters() || m.is_user()) {

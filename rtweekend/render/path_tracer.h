@@ -99,11 +99,13 @@ inline int roulette_depth(const light_set& lights) { return lights.empty() ? 5 :
 template <bool NeeOnly, bool UserMaterials>
 class camera_path {
   public:
-    camera_path(const compiled_scene& scene, const environment& env, const ray3f& camera_ray, int max_depth,
-                pixel_sampler& ps, uint64_t& rays, path_estimator estimator, const caustic_splats* caustics = nullptr)
+    // camera_ray: a sample of pixel (x, y).
+    camera_path(const compiled_scene& scene, const environment& env, const ray3f& camera_ray, int x, int y,
+                int max_depth, pixel_sampler& ps, uint64_t& rays, path_estimator estimator,
+                const caustic_splats* caustics = nullptr)
         : scene(scene), env(env), lights(scene.lights), roulette_start(roulette_depth(scene.lights)),
           max_depth(max_depth), ps(ps), rays(rays), estimator_(NeeOnly ? path_estimator::nee : estimator),
-          r(camera_ray), done_(max_depth <= 0) {
+          r(camera_ray), x_(x), y_(y), done_(max_depth <= 0) {
         // The sample's own light path, its numbers from a stream split off the sample's own, which
         // it leaves as it was (joined to every vertex of the path, the light path gains little
         // from stratified numbers, which cost more to draw).
@@ -132,6 +134,7 @@ class camera_path {
     uint64_t& rays;
     const path_estimator estimator_;
     ray3f r;
+    int x_, y_; // the pixel
     int depth = 0;
     vec3f radiance{0, 0, 0}, throughput{1, 1, 1};
     // The vertex the ray left from, for weighing an emitter it hits against light sampling there:
@@ -150,7 +153,9 @@ template <bool NeeOnly, bool UserMaterials>
 void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit& hit) {
     ++rays;
     if (!found) {
-        if (!(depth > 0 && env.camera_rays_only)) {
+        if (depth == 0) {
+            radiance += throughput * env.camera_miss(r.dir, x_, y_);
+        } else if (!env.camera_rays_only) {
             // An environment map is light-sampled at every vertex too (below): weighed as an
             // emitter that is hit.
             const float weight = env.map && nee() && !count_emission_fully ? power_heuristic(last_pdf, env.map->pdf(r.dir)) : 1.0f;
@@ -165,14 +170,26 @@ void camera_path<NeeOnly, UserMaterials>::advance(bool found, const surface_hit&
     const compiled_material* at_hit = hit.user_shape ? &built.emplace_back(compile_reported_material(hit.user_record))
                                                      : &scene.materials[hit.material];
     if (at_hit->texture != no_texture) at_hit = &built.emplace_back(textured(scene, *at_hit, hit));
+    // A normal map (compiled_scene::normal_maps) turns the shading normal; a scene without one
+    // pays the test of an empty table.
+    const bool mapped = !scene.normal_maps.empty() || !scene.surface_maps.empty();
+    vec3f shading_normal = mapped ? shading_normal_at(scene, hit) : hit.shading_normal;
+    // A front end's surface map (surface_map.h) may change the material and the normal, and make
+    // the surface glow: seen in full by every ray, as it is no light to sample.
+    vec3f glow{0, 0, 0};
+    if (mapped && !hit.user_shape)
+        if (const surface_map* map = scene.surface_map_of(hit.material)) {
+            surface_change change{*at_hit, shading_normal};
+            map->apply(scene, hit, change);
+            at_hit = &built.emplace_back(change.material);
+            shading_normal = change.shading_normal;
+            glow = change.glow;
+        }
     const compiled_material& m = *at_hit;
     // Beer's law: a ray that reaches the back face of absorbing glass has travelled hit.t
     // inside it (directions are unit).
     if (!hit.front_face && m.absorbs_inside()) throughput *= m.transmittance(hit.t);
-    // A normal map (compiled_scene::normal_maps) turns the shading normal; a scene without one
-    // pays the test of an empty table.
-    const bool mapped = !scene.normal_maps.empty();
-    const vec3f shading_normal = mapped ? shading_normal_at(scene, hit) : hit.shading_normal;
+    if (mapped) radiance += throughput * glow;
     const shading_point sp{shading_normal, hit.front_face};
     const vec3f wo = -r.dir;
 
@@ -318,9 +335,9 @@ struct batch_buffers {
 
 // One path from start to end: the radiance it carries.
 template <bool NeeOnly, bool UserMaterials>
-vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3f& r, int max_depth, pixel_sampler& ps,
-                 uint64_t& rays, path_estimator estimator, const caustic_splats* caustics = nullptr) {
-    camera_path<NeeOnly, UserMaterials> path(scene, env, r, max_depth, ps, rays, estimator, caustics);
+vec3f trace_path(const compiled_scene& scene, const environment& env, const ray3f& r, int x, int y, int max_depth,
+                 pixel_sampler& ps, uint64_t& rays, path_estimator estimator, const caustic_splats* caustics = nullptr) {
+    camera_path<NeeOnly, UserMaterials> path(scene, env, r, x, y, max_depth, ps, rays, estimator, caustics);
     surface_hit hit;
     while (!path.done()) {
         const bool found = scene.intersect(path.ray(), hit);
@@ -359,6 +376,10 @@ RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_s
                                                                    std::chrono::steady_clock::time_point start) {
     settings.check();
     const camera_frame frame = camera.placed_in(scene.origin);
+    if (env.film && (env.film->width() != frame.width || env.film->height() != frame.height))
+        throw scene_error("the film's background picture is " + std::to_string(env.film->width()) + "x" +
+                          std::to_string(env.film->height()) + ", the image " + std::to_string(frame.width) + "x" +
+                          std::to_string(frame.height) + ": they must be the same size");
     const int spp = settings.samples_per_pixel, max_depth = settings.max_depth;
     const bool user_code = scene.calls_user_code();
     const bool with_time = scene.uses_time();
@@ -390,7 +411,7 @@ RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_s
             // one path after another.
             for (int k = 0; k < b.count; ++k) {
                 detail::scoped_sample_rng guard(b.rng[k]);
-                b.color[k] = detail::trace_path<false, true>(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k],
+                b.color[k] = detail::trace_path<false, true>(scene, env, camera_rays[k], b.x[k], b.y[k], max_depth, *lanes[k], b.rays[k],
                                                              settings.estimator);
             }
             weigh();
@@ -402,7 +423,8 @@ RTWEEKEND_ENGINE_FUNCTION render_result detail::path_trace_from(const compiled_s
         // them share, is paid once, and the processor overlaps the rays' work).
         in_place_array<detail::camera_path<NeeOnly, false>, sample_batch::capacity> paths;
         for (int k = 0; k < b.count; ++k)
-            paths.emplace_back(scene, env, camera_rays[k], max_depth, *lanes[k], b.rays[k], settings.estimator, splats);
+            paths.emplace_back(scene, env, camera_rays[k], b.x[k], b.y[k], max_depth, *lanes[k], b.rays[k], settings.estimator,
+                               splats);
         int live[sample_batch::capacity], n = 0;
         for (int k = 0; k < b.count; ++k)
             if (!paths[k].done()) live[n++] = k;

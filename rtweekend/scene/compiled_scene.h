@@ -92,9 +92,6 @@ class compiled_scene {
     // Shapes the compiler made to stand for user shapes (convex_medium for fog in a box), which
     // user_shapes names in their place.
     std::vector<std::shared_ptr<const hittable>> owned_user_shapes;
-    // Textures made for it after compiling (the texture table points to them): a course scene's
-    // texture maps for the path tracer (render's xml_path_compiled).
-    std::vector<std::shared_ptr<const texture>> owned_textures;
     bool has_user_materials = false;
 
     // The kind of every shape in the BVH when there is only one kind; empty for a mix (or none).
