@@ -433,9 +433,11 @@ RTWEEKEND_ENGINE_FUNCTION ray3f whitted_renderer::spawn(const surface_hit& hit, 
 RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::course_f_cos(const compiled_material& m, const whitted_terms& terms,
                                                                const vec3f& wo, const vec3f& wi, const shading_point& sp) {
     if (terms.has_brdf) return terms.brdf.course_value(wo, wi, sp.n);
+    const vec3f diffuse = pi_f * m.eval(wo, wi, sp);
+    if (terms.specular.x == 0 && terms.specular.y == 0 && terms.specular.z == 0) return diffuse; // no power to take
     const vec3f h = normalize(wi + wo);
     const float specular = std::pow(fmax_inline(0.0f, dot(sp.n, h)), terms.phong_exponent);
-    return pi_f * m.eval(wo, wi, sp) + specular * terms.specular;
+    return diffuse + specular * terms.specular;
 }
 
 RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::shade(const surface_hit& hit, const ray3f& r,
