@@ -165,14 +165,16 @@ void print_usage(const description& d, std::FILE* to) {
                      "               render's image (text scenes, uniform sampling)\n");
     if (d.xml_scenes)
         std::fprintf(to,
-                     "For a CENG795 scene (.xml, or the course's JSON form, .json), every camera is rendered with the\n"
-                     "Whitted ray tracer to its ImageName (.png, .ppm, .pfm or .exr), only --threads, --quiet and these apply:\n"
+                     "For a CENG795 scene (.xml, or the course's JSON form, .json), every camera is rendered by the\n"
+                     "course's renderer it names (the Whitted ray tracer, or its path tracer) to its ImageName (.png,\n"
+                     ".ppm, .pfm or .exr); only --threads, --quiet and these apply:\n"
                      "  -o DIR       write the images into DIR (created if missing); default: the current directory\n"
+                     "  --spp N      every camera's NumSamples (a quick preview of a long render, or more)\n"
                      "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
                      "  --integrator path\n"
                      "               render with the path tracer instead (point, directional, spot, area,\n"
                      "               object and environment lights with indirect light, the diffuse\n"
-                     "               reflectance as a Lambertian albedo); --spp, --depth, --seed,\n"
+                     "               reflectance as a Lambertian albedo); --spp (the path tracer's), --depth, --seed,\n"
                      "               --adaptive, --estimator, --sampler, --caustic-paths and --filter then apply too\n");
 }
 
@@ -341,9 +343,8 @@ options parse_arguments(int argc, char** argv, const description& d) {
         stop_parsing(d.max_positional == 0 ? "unexpected argument '" + o.positional.front() + "'"
                                            : std::string("expected ") + d.operands);
     const bool xml = d.xml_scenes && !o.positional.empty() && is_xml_scene(o.positional[0]);
-    if (xml && !o.path_integrator && (o.width || o.spp || o.depth || o.adaptive || o.seed || o.estimator ||
-                                     o.sampler || o.filter))
-        stop_parsing("--spp, --depth, --adaptive, --seed, --estimator, --sampler and --filter apply to XML scenes only "
+    if (xml && !o.path_integrator && (o.width || o.depth || o.adaptive || o.seed || o.estimator || o.sampler || o.filter))
+        stop_parsing("--depth, --adaptive, --seed, --estimator, --sampler and --filter apply to XML scenes only "
                      "with --integrator path, and --width never does (their files set the resolution)");
     if (xml && o.width) stop_parsing("--width does not apply to XML scenes (their files set the resolution)");
     if (o.time_budget && (xml || o.samples || o.adaptive.value_or(0) > 0))

@@ -15,7 +15,8 @@
 //                                                   --samples A:B the slice (io/slice_file.h); --time S:
 //                                                   passes until S seconds are spent; --preview S: -o
 //                                                   rewritten as passes complete (render_in_passes)
-//   rt::whitted_scene read_xml_scene(opt)           load_xml_scene(opt.positional[0]), at least one camera
+//   rt::whitted_scene read_xml_scene(opt)           load_xml_scene(opt.positional[0]), at least one camera,
+//                                                   --spp as every camera's NumSamples (apply_xml_samples)
 //   xml_output_paths(scene, scene_path, dir)        each camera's image path inside -o DIR, all checked
 //   render_xml_scene(opt, scene, outputs)           every camera, Whitted or (--integrator path) path traced
 //
@@ -392,11 +393,20 @@ inline void render_xml_path_traced(const options& opt, const rt::whitted_scene& 
     }
 }
 
+// --spp N on an XML scene: every camera's NumSamples, whichever renderer it names (with
+// --integrator path, the path tracer's samples: xml_path_samples). A preview of a render of
+// thousands of samples needs no edited copy of the file.
+inline void apply_xml_samples(const options& opt, rt::whitted_scene& scene) {
+    if (!opt.spp) return;
+    for (rt::view_camera& c : scene.cameras) c.samples = *opt.spp;
+}
+
 inline rt::whitted_scene read_xml_scene(const options& opt) {
     const std::string& scene_path = opt.positional[0];
     rt::whitted_scene scene = rt::load_xml_scene(scene_path);
     if (scene.cameras.empty()) throw rt::scene_error(scene_path + ": the scene has no <Camera>: nothing to render");
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "render: warning: %s\n", w.c_str());
+    apply_xml_samples(opt, scene);
     return scene;
 }
 

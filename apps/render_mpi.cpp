@@ -99,9 +99,10 @@ void render_text(MPI_Comm comm, const app::options& opt, int rank) {
 
 void render_xml(MPI_Comm comm, const app::options& opt, int rank) {
     const std::string& scene_path = opt.positional[0];
-    const rt::whitted_scene scene = rt::mpi::together(comm, [&] { return rt::load_xml_scene(scene_path); });
+    rt::whitted_scene scene = rt::mpi::together(comm, [&] { return rt::load_xml_scene(scene_path); });
     if (rank == 0)
         for (const std::string& w : scene.warnings) std::fprintf(stderr, "render_mpi: warning: %s\n", w.c_str());
+    app::apply_xml_samples(opt, scene); // --spp: every camera's NumSamples, on every rank alike
     std::signal(SIGINT, SIG_DFL);
     const std::string fingerprint = rt::mpi::together(comm, [&] { return rt::scene_fingerprint(scene.files); });
     rt::mpi::require_same(comm, fingerprint, "scene (the contents of its files)");

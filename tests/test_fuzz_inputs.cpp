@@ -817,9 +817,10 @@ TEST_CASE("fuzz: app::parse_arguments throws what app::parse prints and exits wi
     s = stop({"s.txt", "-o", "/nonexistent-dir/out.png"});
     CHECK(s.status == 1);
     CHECK(s.message.find("'/nonexistent-dir/out.png'") != std::string::npos);
-    s = stop({"s.xml", "--spp", "4"});
+    s = stop({"s.xml", "--depth", "4"});
     CHECK(s.status == 2);
     CHECK(s.message.find("apply to XML scenes only with --integrator path") != std::string::npos);
+    CHECK(*parse({"s.xml", "--spp", "4"}).spp == 4); // every camera's NumSamples
     CHECK(stop({"--spp"}).message == "--spp needs a value");
     const app::options o = parse({"s.txt", "--spp=4", "-q", "--seed", "9"});
     CHECK(*o.spp == 4);
