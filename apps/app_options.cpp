@@ -172,10 +172,11 @@ void print_usage(const description& d, std::FILE* to) {
                      "  --spp N      every camera's NumSamples (a quick preview of a long render, or more)\n"
                      "  --bfc on|off back-face culling for primary and reflected rays of opaque objects (default off)\n"
                      "  --integrator path\n"
-                     "               render with the path tracer instead (point, directional, spot, area,\n"
-                     "               object and environment lights with indirect light, the diffuse\n"
-                     "               reflectance as a Lambertian albedo); --spp (the path tracer's), --depth, --seed,\n"
-                     "               --adaptive, --estimator, --sampler, --caustic-paths and --filter then apply too\n");
+                     "               render every camera with our path tracer instead (point, directional,\n"
+                     "               spot, area, object and environment lights with indirect light, the\n"
+                     "               diffuse reflectance as a Lambertian albedo); --spp (its samples), --depth,\n"
+                     "               --seed, --adaptive, --estimator, --sampler, --caustic-paths and --filter\n"
+                     "               then apply too\n");
 }
 
 [[noreturn]] void usage_error(const description& d, const std::string& message) {
