@@ -103,6 +103,28 @@ TEST_CASE("course BRDFs: f cos theta_i of each model at chosen angles") {
     }
 }
 
+TEST_CASE("course BRDFs: without ks only the diffuse term, channel by channel") {
+    // The diffuse term alone, by hand: kd cos theta_i, or kd / pi cos theta_i for the normalised
+    // and Torrance-Sparrow models ((1 - F) kd / pi cos theta_i with kdfresnel).
+    const double F = fresnel_glass_60();
+    const double diffuse[] = {kd * cos_i, kd * cos_i, kd / pi_d * cos_i, kd * cos_i,
+                              kd * cos_i, kd / pi_d * cos_i, kd / pi_d * cos_i, (1 - F) * kd / pi_d * cos_i};
+    size_t k = 0;
+    for (const expectation& e : expectations()) {
+        CAPTURE(e.name);
+        course_brdf_bsdf none = e.brdf, blue = e.brdf;
+        none.ks = {0, 0, 0};
+        blue.ks = {0, 0, float(ks)}; // glossy in one channel: the power is still taken for it
+        const vec3f v = none.course_value(wo_f, wi_f, n_f), b = blue.course_value(wo_f, wi_f, n_f);
+        CHECK(v.x == doctest::Approx(diffuse[k]).epsilon(2e-6));
+        CHECK((v.y == v.x && v.z == v.x));
+        CHECK((b.x == v.x && b.y == v.x));
+        CHECK(b.z == doctest::Approx(e.value).epsilon(2e-6));
+        ++k;
+    }
+    CHECK(k == 8);
+}
+
 TEST_CASE("course BRDFs: read from <BRDFs> and rendered on a floor as I / d^2 f cos theta_i") {
     // A floor z = 0; the light 2 units from the origin along wi, intensity 1000 (E = 250); a 1x1
     // camera on wo's line looking at the origin (its one ray is the gaze).
