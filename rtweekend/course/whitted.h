@@ -434,7 +434,7 @@ RTWEEKEND_ENGINE_FUNCTION vec3f whitted_renderer::course_f_cos(const compiled_ma
                                                                const vec3f& wo, const vec3f& wi, const shading_point& sp) {
     if (terms.has_brdf) return terms.brdf.course_value(wo, wi, sp.n);
     const vec3f diffuse = pi_f * m.eval(wo, wi, sp);
-    if (terms.specular.x == 0 && terms.specular.y == 0 && terms.specular.z == 0) return diffuse; // no power to take
+    if (detail::is_black(terms.specular)) return diffuse; // no power to take (ks is checked non-negative)
     const vec3f h = normalize(wi + wo);
     const float specular = std::pow(fmax_inline(0.0f, dot(sp.n, h)), terms.phong_exponent);
     return diffuse + specular * terms.specular;

@@ -54,7 +54,7 @@ struct course_brdf_bsdf {
     bool phong_lobe() const { return model == model_t::original_phong || model == model_t::modified_phong; }
     // Whether the specular term can be non-zero. Without it the lobe's power is not taken: it
     // would be multiplied by ks = 0 (the walls of a path-traced room spent 4 % of their time so).
-    bool glossy() const { return ks.x != 0 || ks.y != 0 || ks.z != 0; }
+    bool glossy() const { return !detail::is_black(ks); } // ks is checked non-negative
 
     // The course's f(wo, wi) cos theta_i.
     vec3f course_value(const vec3f& wo, const vec3f& wi, const vec3f& n) const {
